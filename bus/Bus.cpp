@@ -1,0 +1,118 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "bus/Bus.hpp"
+
+#include <cstdlib>
+#include <stdexcept>
+
+#include <fastdds/dds/domain/DomainParticipantFactory.hpp>
+#include <fastdds/rtps/transport/UDPv4TransportDescriptor.h>
+#include <fastdds/rtps/transport/shared_mem/SharedMemTransportDescriptor.h>
+#include <fastrtps/utils/IPLocator.h>
+
+namespace flatsat::bus {
+
+namespace dds = eprosima::fastdds::dds;
+using eprosima::fastrtps::rtps::IPLocator;
+using eprosima::fastrtps::rtps::Locator_t;
+
+namespace {
+
+constexpr std::uint32_t kMaxDomainId = 232;  // 7400 + 250 d + offsets must stay below 65535
+/// Participants per host that unicast discovery reaches. Each is one
+/// metatraffic port; the rig plus tools stays well below it.
+constexpr std::uint32_t kMaxLocalParticipants = 48;
+
+Locator_t loopbackLocator(std::uint32_t port) {
+  Locator_t locator;
+  locator.kind = LOCATOR_KIND_UDPv4;
+  IPLocator::setIPv4(locator, 127, 0, 0, 1);
+  locator.port = port;
+  return locator;
+}
+
+/// Transports are set here, in code, from a default-constructed QoS: a
+/// profile named only by FASTRTPS_DEFAULT_PROFILES_FILE cannot widen them.
+/// Discovery is unicast to the metatraffic ports of the first participants
+/// of the domain on 127.0.0.1 (RTPS 2.2 §9.6.1.1 port mapping), as ROS 2's
+/// localhost-only mode does, so no multicast is ever sent.
+dds::DomainParticipantQos loopbackQos(std::uint32_t domain) {
+  dds::DomainParticipantQos qos;
+  qos.transport().use_builtin_transports = false;
+  auto udp = std::make_shared<eprosima::fastdds::rtps::UDPv4TransportDescriptor>();
+  udp->interfaceWhiteList.emplace_back("127.0.0.1");
+  qos.transport().user_transports.push_back(
+      std::make_shared<eprosima::fastdds::rtps::SharedMemTransportDescriptor>());
+  qos.transport().user_transports.push_back(udp);
+
+  auto& builtin = qos.wire_protocol().builtin;
+  builtin.metatrafficMulticastLocatorList.clear();
+  builtin.metatrafficUnicastLocatorList.push_back(loopbackLocator(0));
+  qos.wire_protocol().default_unicast_locator_list.push_back(loopbackLocator(0));
+  const auto& ports = qos.wire_protocol().port;
+  for (std::uint32_t id = 0; id < kMaxLocalParticipants; ++id) {
+    builtin.initialPeersList.push_back(loopbackLocator(ports.getUnicastPort(domain, id)));
+  }
+  return qos;
+}
+
+dds::DomainParticipantQos networkQos() {
+  dds::DomainParticipantQos qos;  // built-in UDPv4 + SHM, SPDP multicast
+  return qos;
+}
+
+}  // namespace
+
+std::uint32_t domainFromEnvironment(std::uint32_t scenario_domain) {
+  const char* text = std::getenv("FLATSAT_DOMAIN");
+  if (text == nullptr || *text == '\0') return scenario_domain;
+  char* end = nullptr;
+  const unsigned long value = std::strtoul(text, &end, 10);
+  if (*end != '\0' || value > kMaxDomainId) {
+    throw std::invalid_argument("FLATSAT_DOMAIN='" + std::string(text) +
+                                "': must be an integer in 0.." + std::to_string(kMaxDomainId));
+  }
+  return static_cast<std::uint32_t>(value);
+}
+
+NetworkProfile profileFromEnvironment() {
+  const char* text = std::getenv("FLATSAT_NETWORK");
+  return (text != nullptr && std::string(text) == "1") ? NetworkProfile::kNetwork
+                                                       : NetworkProfile::kLoopback;
+}
+
+Bus::Bus(const BusOptions& options) : options_(options) {
+  if (options.domain_id > kMaxDomainId) {
+    throw std::invalid_argument("domain id " + std::to_string(options.domain_id) +
+                                ": must be in 0.." + std::to_string(kMaxDomainId));
+  }
+  auto qos = options.profile == NetworkProfile::kLoopback ? loopbackQos(options.domain_id)
+                                                          : networkQos();
+  qos.name(options.participant_name);
+  participant_ = dds::DomainParticipantFactory::get_instance()->create_participant(
+      options.domain_id, qos);
+  if (participant_ == nullptr) {
+    throw std::runtime_error("could not create a DDS participant on domain " +
+                             std::to_string(options.domain_id));
+  }
+  publisher_ = participant_->create_publisher(dds::PUBLISHER_QOS_DEFAULT);
+  subscriber_ = participant_->create_subscriber(dds::SUBSCRIBER_QOS_DEFAULT);
+}
+
+Bus::~Bus() {
+  participant_->delete_contained_entities();
+  dds::DomainParticipantFactory::get_instance()->delete_participant(participant_);
+}
+
+dds::Topic& Bus::topic(const std::string& name, dds::TopicDataType* type) {
+  std::lock_guard lock(mutex_);
+  if (auto it = topics_.find(name); it != topics_.end()) return *it->second;
+  dds::TypeSupport support(type);
+  support.register_type(participant_);
+  dds::Topic* topic = participant_->create_topic(name, support.get_type_name(),
+                                                 dds::TOPIC_QOS_DEFAULT);
+  if (topic == nullptr) throw std::runtime_error("could not create topic " + name);
+  topics_.emplace(name, topic);
+  return *topic;
+}
+
+}  // namespace flatsat::bus

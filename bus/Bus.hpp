@@ -1,0 +1,60 @@
+// SPDX-License-Identifier: Apache-2.0
+#pragma once
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+
+#include <fastdds/dds/domain/DomainParticipant.hpp>
+#include <fastdds/dds/publisher/Publisher.hpp>
+#include <fastdds/dds/subscriber/Subscriber.hpp>
+#include <fastdds/dds/topic/Topic.hpp>
+
+namespace flatsat::bus {
+
+/// Which network a participant may use.
+enum class NetworkProfile {
+  kLoopback,  ///< 127.0.0.1 + shared memory, unicast discovery only: nothing leaves the host
+  kNetwork,   ///< UDP on every interface with multicast discovery (opt-in, for multi-host rigs)
+};
+
+struct BusOptions {
+  std::uint32_t domain_id = 0;  ///< [-] DDS domain, 0..232 (the port formula caps it)
+  NetworkProfile profile = NetworkProfile::kLoopback;
+  std::string participant_name = "flatsat";
+};
+
+/// Domain id for a process: FLATSAT_DOMAIN overrides the scenario's value.
+std::uint32_t domainFromEnvironment(std::uint32_t scenario_domain);
+/// Profile for a process: FLATSAT_NETWORK=1 selects the network profile.
+NetworkProfile profileFromEnvironment();
+
+/// One DDS participant with one publisher and one subscriber; topics are
+/// created once per name and shared by every endpoint of the process.
+class Bus {
+ public:
+  explicit Bus(const BusOptions& options);
+  ~Bus();
+  Bus(const Bus&) = delete;
+  Bus& operator=(const Bus&) = delete;
+
+  eprosima::fastdds::dds::DomainParticipant& participant() { return *participant_; }
+  eprosima::fastdds::dds::Publisher& publisher() { return *publisher_; }
+  eprosima::fastdds::dds::Subscriber& subscriber() { return *subscriber_; }
+  std::uint32_t domainId() const { return options_.domain_id; }
+
+  /// The topic of that name, registering its type on first use.
+  eprosima::fastdds::dds::Topic& topic(const std::string& name,
+                                       eprosima::fastdds::dds::TopicDataType* type);
+
+ private:
+  BusOptions options_;
+  eprosima::fastdds::dds::DomainParticipant* participant_ = nullptr;
+  eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
+  eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;
+  std::mutex mutex_;
+  std::map<std::string, eprosima::fastdds::dds::Topic*> topics_;
+};
+
+}  // namespace flatsat::bus

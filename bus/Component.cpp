@@ -1,0 +1,83 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "bus/Component.hpp"
+
+#include <spdlog/spdlog.h>
+
+namespace flatsat::bus {
+
+namespace {
+constexpr auto kHealthPeriod = std::chrono::seconds(1);  // wall-clock heartbeat
+}
+
+Component::Component(Bus& bus, NodeOptions options)
+    : Node(bus, std::move(options)),
+      grant_reader_(bus, topics::kStepGrant,
+                    [this](const msg::StepGrant& grant) {
+                      {
+                        std::lock_guard lock(mutex_);
+                        grants_.push_back(grant);
+                      }
+                      changed_.notify_all();
+                    }),
+      done_(bus, topics::kStepDone) {}
+
+void Component::run() {
+  try {
+    waitForProducers();
+    waitUntilNothingMissing(
+        [this] { return grant_reader_.matchedWriters() == 0 ? " " + grant_reader_.topicName() : ""; },
+        "waiting for the time master");
+    publishHealth(msg::ComponentState::READY, 0, "all producers matched");
+    spdlog::info("{}: ready (divider {})", name(), dividerOf(name()));
+    loop();
+    flushOutputs();
+    done_.waitForAcknowledgments(std::chrono::seconds(5));
+    publishHealth(msg::ComponentState::STOPPED, steps_done_, "run complete");
+    spdlog::info("{}: stopped after {} steps", name(), steps_done_);
+  } catch (const NodeFailure& failure) {
+    publishHealth(msg::ComponentState::FAILED, steps_done_, failure.what());
+    throw;
+  }
+}
+
+void Component::loop() {
+  const std::uint32_t divider = dividerOf(name());
+  auto next_health = std::chrono::steady_clock::now() + kHealthPeriod;
+  for (;;) {
+    const msg::StepGrant grant = nextGrant();
+    if (grant.stop()) return;
+    const StepContext ctx{grant.header().step(), grant.header().sim_time_ns(),
+                          grant.step_period_ns()};
+    if (ctx.step % divider == 0) {
+      waitForInputs(ctx.step);
+      step(ctx);
+      msg::StepDone done;
+      done.header(makeHeader(ctx, name()));
+      done_.write(done);
+      ++steps_done_;
+    }
+    dropInputsBefore(ctx.step);
+    if (std::chrono::steady_clock::now() > next_health) {
+      publishHealth(msg::ComponentState::RUNNING, steps_done_, "stepping");
+      next_health += kHealthPeriod;
+    }
+  }
+}
+
+msg::StepGrant Component::nextGrant() {
+  const auto deadline = std::chrono::steady_clock::now() + options_.step_timeout;
+  std::unique_lock lock(mutex_);
+  while (grants_.empty()) {
+    if (interrupted()) throw NodeFailure(name() + ": interrupted");
+    if (std::chrono::steady_clock::now() > deadline) {
+      throw NodeFailure(name() + ": no step grant from the time master for " +
+                        std::to_string(options_.step_timeout.count()) + " ms");
+    }
+    changed_.wait_for(lock, std::chrono::milliseconds(100));
+  }
+  const msg::StepGrant grant = grants_.front();
+  grants_.pop_front();
+  return grant;
+}
+
+}  // namespace flatsat::bus

@@ -1,0 +1,108 @@
+// SPDX-License-Identifier: Apache-2.0
+#pragma once
+#include <chrono>
+#include <functional>
+#include <stdexcept>
+#include <string>
+
+#include <fastdds/dds/publisher/DataWriter.hpp>
+#include <fastdds/dds/subscriber/DataReader.hpp>
+#include <fastdds/dds/subscriber/DataReaderListener.hpp>
+#include <fastdds/dds/subscriber/SampleInfo.hpp>
+
+#include "bus/Bus.hpp"
+#include "bus/Qos.hpp"
+
+namespace flatsat::bus {
+
+/// Typed writer for one registry topic.
+template <class Def>
+class Writer {
+ public:
+  using Sample = typename Def::Type;
+
+  Writer(Bus& bus, const Def& def) : name_(def.name), publisher_(bus.publisher()) {
+    auto& topic = bus.topic(std::string(def.name), new typename Def::PubSubType());
+    writer_ = publisher_.create_datawriter(&topic, writerQos(def.qos));
+    if (writer_ == nullptr) throw std::runtime_error("could not create a writer on " + name_);
+  }
+  ~Writer() { publisher_.delete_datawriter(writer_); }
+  Writer(const Writer&) = delete;
+  Writer& operator=(const Writer&) = delete;
+
+  void write(const Sample& sample) {
+    if (!writer_->write(const_cast<Sample*>(&sample))) {
+      throw std::runtime_error("write failed on topic " + name_);
+    }
+  }
+  int matchedReaders() const {
+    eprosima::fastdds::dds::PublicationMatchedStatus status;
+    writer_->get_publication_matched_status(status);
+    return status.current_count;
+  }
+  /// Blocks until every matched reader acknowledged what was written.
+  bool waitForAcknowledgments(std::chrono::milliseconds timeout) {
+    const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(timeout).count();
+    return writer_->wait_for_acknowledgments(
+               eprosima::fastrtps::Duration_t(static_cast<int32_t>(ns / 1000000000),
+                                              static_cast<uint32_t>(ns % 1000000000))) ==
+           ReturnCode_t::RETCODE_OK;
+  }
+  const std::string& topicName() const { return name_; }
+
+ private:
+  std::string name_;
+  eprosima::fastdds::dds::Publisher& publisher_;
+  eprosima::fastdds::dds::DataWriter* writer_ = nullptr;
+};
+
+/// Typed reader for one registry topic; every valid sample is handed to a
+/// callback on a Fast DDS thread.
+template <class Def>
+class Reader : private eprosima::fastdds::dds::DataReaderListener {
+ public:
+  using Sample = typename Def::Type;
+  using Callback = std::function<void(const Sample&)>;
+
+  Reader(Bus& bus, const Def& def, Callback on_sample)
+      : name_(def.name), on_sample_(std::move(on_sample)), subscriber_(bus.subscriber()) {
+    auto& topic = bus.topic(std::string(def.name), new typename Def::PubSubType());
+    reader_ = subscriber_.create_datareader(&topic, readerQos(def.qos), this);
+    if (reader_ == nullptr) throw std::runtime_error("could not create a reader on " + name_);
+  }
+  ~Reader() {
+    reader_->set_listener(nullptr);
+    subscriber_.delete_datareader(reader_);
+  }
+  Reader(const Reader&) = delete;
+  Reader& operator=(const Reader&) = delete;
+
+  int matchedWriters() const {
+    eprosima::fastdds::dds::SubscriptionMatchedStatus status;
+    reader_->get_subscription_matched_status(status);
+    return status.current_count;
+  }
+  const std::string& topicName() const { return name_; }
+
+ private:
+  void on_data_available(eprosima::fastdds::dds::DataReader* reader) override {
+    Sample sample;
+    eprosima::fastdds::dds::SampleInfo info;
+    while (reader->take_next_sample(&sample, &info) == ReturnCode_t::RETCODE_OK) {
+      if (info.valid_data) on_sample_(sample);
+    }
+  }
+
+  std::string name_;
+  Callback on_sample_;
+  eprosima::fastdds::dds::Subscriber& subscriber_;
+  eprosima::fastdds::dds::DataReader* reader_ = nullptr;
+};
+
+/// Endpoint types of a registry topic: WriterOf<topics::kTruth>, ...
+template <const auto& Topic>
+using WriterOf = Writer<std::remove_cvref_t<decltype(Topic)>>;
+template <const auto& Topic>
+using ReaderOf = Reader<std::remove_cvref_t<decltype(Topic)>>;
+
+}  // namespace flatsat::bus

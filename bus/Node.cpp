@@ -1,0 +1,102 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "bus/Node.hpp"
+
+#include <chrono>
+
+#include <spdlog/spdlog.h>
+
+#include "bus/Shutdown.hpp"
+
+namespace flatsat::bus {
+
+namespace {
+constexpr auto kPoll = std::chrono::milliseconds(100);  // shutdown-flag polling period
+}
+
+Node::Node(Bus& bus, NodeOptions options)
+    : bus_(bus), options_(std::move(options)), health_(bus, topics::kHealth) {
+  publishHealth(msg::ComponentState::STARTING, 0, "entities created");
+}
+
+Node::~Node() = default;
+
+std::uint32_t Node::dividerOf(const std::string& component) const {
+  auto it = options_.schedule.find(component);
+  if (it == options_.schedule.end()) {
+    throw NodeFailure(options_.name + ": needs input from '" + component +
+                      "', which is not in the rig's schedule");
+  }
+  return it->second;
+}
+
+bool Node::interrupted() { return shutdownRequested(); }
+
+void Node::waitForProducers() {
+  waitUntilNothingMissing(
+      [this] {
+        std::string missing;
+        for (const auto& input : inputs_) {
+          if (input->matchedWriters() == 0) missing += " " + input->topicName();
+        }
+        return missing;
+      },
+      "waiting for producers to match");
+}
+
+void Node::notify() {
+  // Taking the lock orders the change before a waiter's check, so no
+  // wake-up is lost between its check and its wait.
+  { std::lock_guard lock(mutex_); }
+  changed_.notify_all();
+}
+
+void Node::waitForInputs(std::uint64_t k) {
+  const auto deadline = std::chrono::steady_clock::now() + options_.step_timeout;
+  std::unique_lock lock(mutex_);
+  for (;;) {
+    const InputBase* missing = nullptr;
+    for (const auto& input : inputs_) {
+      if (!input->has(k)) {
+        missing = input.get();
+        break;
+      }
+    }
+    if (missing == nullptr) return;
+    if (shutdownRequested()) {
+      throw NodeFailure(options_.name + ": interrupted at step " + std::to_string(k));
+    }
+    if (std::chrono::steady_clock::now() > deadline) {
+      throw NodeFailure(options_.name + ": step " + std::to_string(k) + ": no sample on " +
+                        missing->topicName() + " within " +
+                        std::to_string(options_.step_timeout.count()) + " ms");
+    }
+    changed_.wait_for(lock, kPoll);
+  }
+}
+
+void Node::dropInputsBefore(std::uint64_t k) {
+  for (auto& input : inputs_) input->dropBefore(k);
+}
+
+void Node::flushOutputs() {
+  for (auto& output : outputs_) {
+    if (!output->flush()) spdlog::warn("{}: an output was not acknowledged by every reader", name());
+  }
+}
+
+void Node::publishHealth(msg::ComponentState state, std::uint64_t steps_done,
+                         const std::string& message) {
+  msg::Health health;
+  setText(health.header().source(), options_.name);
+  health.header().step(steps_done);
+  health.state(state);
+  health.steps_done(steps_done);
+  health.wall_time_ns(static_cast<std::uint64_t>(
+      std::chrono::duration_cast<std::chrono::nanoseconds>(
+          std::chrono::system_clock::now().time_since_epoch())
+          .count()));
+  setText(health.message(), message);
+  health_.write(health);
+}
+
+}  // namespace flatsat::bus

@@ -1,0 +1,196 @@
+// SPDX-License-Identifier: Apache-2.0
+#pragma once
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "bus/Bus.hpp"
+#include "bus/Endpoints.hpp"
+#include "bus/Stamp.hpp"
+#include "bus/Topics.hpp"
+
+namespace flatsat::bus {
+
+/// Step dividers of every scheduled component of the rig, by name: a
+/// component due at k when k % divider == 0.
+using Schedule = std::map<std::string, std::uint32_t>;
+
+/// What every node needs to know about its place in the rig.
+struct NodeOptions {
+  std::string name;                 ///< component name, unique in the rig
+  Schedule schedule;                ///< every scheduled component's divider
+  std::chrono::milliseconds peer_timeout{60000};  ///< [ms] for discovery
+  std::chrono::milliseconds step_timeout{60000};  ///< [ms] for one step's data
+};
+
+/// Raised when a node gives up: the message names the topic and step.
+struct NodeFailure : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+class Node;
+
+/// A stepped input: samples kept by step until the consumer has moved past.
+/// Each input guards its samples with its own lock, so a node never holds
+/// its lock while it computes or publishes: a write that Fast DDS delivers
+/// synchronously to a reader of the same process cannot deadlock.
+class InputBase {
+ public:
+  virtual ~InputBase() = default;
+  virtual bool has(std::uint64_t k) const = 0;
+  virtual void dropBefore(std::uint64_t k) = 0;
+  virtual int matchedWriters() const = 0;
+  virtual const std::string& topicName() const = 0;
+};
+
+template <class Def>
+class Input final : public InputBase {
+ public:
+  using Sample = typename Def::Type;
+
+  Input(Node& node, const Def& def, std::uint32_t producer_divider);
+
+  /// The producer's latest sample due at or before step k: stamped
+  /// k - k mod (producer divider); the node waited for it.
+  Sample at(std::uint64_t k) const;
+  bool has(std::uint64_t k) const override;
+  void dropBefore(std::uint64_t k) override;
+  int matchedWriters() const override { return reader_.matchedWriters(); }
+  const std::string& topicName() const override { return reader_.topicName(); }
+
+ private:
+  std::uint64_t stampFor(std::uint64_t k) const { return k - k % divider_; }
+  Node& node_;
+  std::uint32_t divider_;
+  mutable std::mutex mutex_;
+  std::map<std::uint64_t, Sample> samples_;
+  Reader<Def> reader_;
+};
+
+/// Base of every bus node: owns the inputs and outputs, the lock they share,
+/// and the health topic.
+class Node {
+ public:
+  Node(Bus& bus, NodeOptions options);
+  virtual ~Node();
+
+  const std::string& name() const { return options_.name; }
+  std::uint32_t dividerOf(const std::string& component) const;
+
+ protected:
+  template <class Def>
+  Input<Def>& addInput(const Def& def) {
+    auto input = std::make_unique<Input<Def>>(*this, def, dividerOf(std::string(def.producer)));
+    auto& ref = *input;
+    inputs_.push_back(std::move(input));
+    return ref;
+  }
+  template <class Def>
+  Writer<Def>& addOutput(const Def& def) {
+    auto writer = std::make_unique<WriterHolder<Def>>(bus_, def);
+    auto& ref = writer->writer;
+    outputs_.push_back(std::move(writer));
+    return ref;
+  }
+
+  /// Waits until every input has matched a writer; throws NodeFailure
+  /// naming the unmatched topics on timeout or shutdown.
+  void waitForProducers();
+  /// Waits (polling, woken by any input) until `missing()` returns an empty
+  /// string; on timeout or shutdown throws NodeFailure with `what` and it.
+  template <class Missing>
+  void waitUntilNothingMissing(Missing&& missing, const std::string& what);
+  /// Waits until every input holds its sample for step k.
+  void waitForInputs(std::uint64_t k);
+  void dropInputsBefore(std::uint64_t k);
+  /// Waits until every output's readers acknowledged all samples.
+  void flushOutputs();
+  void publishHealth(msg::ComponentState state, std::uint64_t steps_done,
+                     const std::string& message);
+
+  static bool interrupted();
+
+  /// Wakes the node's waits: call after changing what they look at.
+  void notify();
+
+  Bus& bus_;
+  NodeOptions options_;
+  /// Guards the node's own bookkeeping (grants, done sets, states) and the
+  /// waits; never held while computing or publishing.
+  std::mutex mutex_;
+  std::condition_variable changed_;
+
+ private:
+  template <class Def> friend class Input;
+  struct OutputBase {
+    virtual ~OutputBase() = default;
+    virtual bool flush() = 0;
+  };
+  template <class Def>
+  struct WriterHolder final : OutputBase {
+    WriterHolder(Bus& bus, const Def& def) : writer(bus, def) {}
+    bool flush() override { return writer.waitForAcknowledgments(std::chrono::seconds(5)); }
+    Writer<Def> writer;
+  };
+  std::vector<std::unique_ptr<InputBase>> inputs_;
+  std::vector<std::unique_ptr<OutputBase>> outputs_;
+  WriterOf<topics::kHealth> health_;
+};
+
+/// The input type of a registry topic: InputOf<topics::kTruth>.
+template <const auto& Topic>
+using InputOf = Input<std::remove_cvref_t<decltype(Topic)>>;
+
+template <class Missing>
+void Node::waitUntilNothingMissing(Missing&& missing, const std::string& what) {
+  const auto deadline = std::chrono::steady_clock::now() + options_.peer_timeout;
+  std::unique_lock lock(mutex_);
+  for (;;) {
+    const std::string left = missing();
+    if (left.empty()) return;
+    if (interrupted()) throw NodeFailure(options_.name + ": interrupted while " + what);
+    if (std::chrono::steady_clock::now() > deadline) {
+      throw NodeFailure(options_.name + ": " + what + " for " +
+                        std::to_string(options_.peer_timeout.count()) + " ms; missing:" + left);
+    }
+    changed_.wait_for(lock, std::chrono::milliseconds(100));
+  }
+}
+
+template <class Def>
+Input<Def>::Input(Node& node, const Def& def, std::uint32_t producer_divider)
+    : node_(node),
+      divider_(producer_divider),
+      reader_(node.bus_, def, [this](const Sample& sample) {
+        {
+          std::lock_guard lock(mutex_);
+          samples_.insert_or_assign(sample.header().step(), sample);
+        }
+        node_.notify();
+      }) {}
+
+template <class Def>
+typename Input<Def>::Sample Input<Def>::at(std::uint64_t k) const {
+  std::lock_guard lock(mutex_);
+  return samples_.at(stampFor(k));
+}
+
+template <class Def>
+bool Input<Def>::has(std::uint64_t k) const {
+  std::lock_guard lock(mutex_);
+  return samples_.count(stampFor(k)) != 0;
+}
+
+template <class Def>
+void Input<Def>::dropBefore(std::uint64_t k) {
+  std::lock_guard lock(mutex_);
+  samples_.erase(samples_.begin(), samples_.lower_bound(stampFor(k)));
+}
+
+}  // namespace flatsat::bus

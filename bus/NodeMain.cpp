@@ -1,0 +1,37 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "bus/NodeMain.hpp"
+
+#include <CLI/CLI.hpp>
+#include <spdlog/sinks/stdout_color_sinks.h>
+
+namespace flatsat::bus {
+
+NodeArgs parseNodeArgs(int argc, char** argv, const std::string& default_name) {
+  NodeArgs args;
+  args.name = default_name;
+  std::string level = "info";
+  CLI::App app{"flatsat component '" + default_name + "'"};
+  app.add_option("--scenario", args.scenario, "scenario file (YAML)")->required();
+  app.add_option("--name", args.name, "component name in the scenario");
+  app.add_option("--out", args.out_dir, "run directory");
+  app.add_option("--log", level, "log level: trace, debug, info, warn, error");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    std::exit(app.exit(e));
+  }
+  auto logger = spdlog::stderr_color_mt(args.name);
+  logger->set_pattern("[%H:%M:%S.%e] [%n] [%^%l%$] %v");
+  spdlog::set_default_logger(logger);
+  spdlog::set_level(spdlog::level::from_str(level));
+  return args;
+}
+
+NodeOptions nodeOptions(const Scenario& scenario, const std::string& name) {
+  NodeOptions options;
+  options.name = name;
+  options.schedule = scenario.schedule();
+  return options;
+}
+
+}  // namespace flatsat::bus

@@ -1,0 +1,58 @@
+// SPDX-License-Identifier: Apache-2.0
+#pragma once
+// The body of every component's main(): options, scenario, parameters,
+// bus, node, run until done or SIGINT/SIGTERM (Fast DDS examples' main).
+#include <exception>
+#include <string>
+
+#include <spdlog/spdlog.h>
+
+#include "bus/Bus.hpp"
+#include "bus/Node.hpp"
+#include "bus/Scenario.hpp"
+#include "bus/Shutdown.hpp"
+
+namespace flatsat::bus {
+
+struct NodeArgs {
+  std::string scenario;  ///< scenario file
+  std::string name;      ///< component name in the scenario
+  std::string out_dir;   ///< run directory (recordings, logs)
+};
+
+/// Parses `--scenario FILE [--name NAME] [--out DIR] [--log LEVEL]`, sets up
+/// logging; exits with a usage message on bad arguments.
+NodeArgs parseNodeArgs(int argc, char** argv, const std::string& default_name);
+
+/// Everything a node needs from the scenario besides its own parameters.
+NodeOptions nodeOptions(const Scenario& scenario, const std::string& name);
+
+/// Loads the scenario, reads the parameters with `read(scenario, name,
+/// problems)`, builds the node with `make(bus, options, params)` and runs it.
+/// Returns the process exit code: 0 done, 1 failed, 2 bad configuration.
+template <class Read, class Make>
+int runNode(int argc, char** argv, const std::string& default_name, Read&& read, Make&& make) {
+  const NodeArgs args = parseNodeArgs(argc, argv, default_name);
+  try {
+    installShutdownHandlers();
+    const Scenario scenario = loadScenario(args.scenario);
+    ConfigProblems problems;
+    auto params = read(scenario, args, problems);
+    if (!problems.empty()) {
+      spdlog::error("{}: invalid parameters:\n{}", args.name, problems.joined());
+      return 2;
+    }
+    Bus bus({domainFromEnvironment(scenario.domain_id), profileFromEnvironment(), args.name});
+    auto node = make(bus, nodeOptions(scenario, args.name), params);
+    node->run();
+    return 0;
+  } catch (const ScenarioError& e) {
+    spdlog::error("{}", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    spdlog::error("{}: {}", args.name, e.what());
+    return 1;
+  }
+}
+
+}  // namespace flatsat::bus

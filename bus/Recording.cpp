@@ -1,0 +1,156 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "bus/Recording.hpp"
+
+#include <algorithm>
+#include <memory>
+#include <stdexcept>
+
+#include <openssl/evp.h>
+#include <sqlite3.h>
+
+namespace flatsat::bus {
+
+namespace {
+
+struct Statement {
+  Statement(sqlite3* db, const std::string& sql, const std::string& path) {
+    if (sqlite3_prepare_v2(db, sql.c_str(), -1, &stmt, nullptr) != SQLITE_OK) {
+      throw std::runtime_error(path + ": " + sqlite3_errmsg(db));
+    }
+  }
+  ~Statement() { sqlite3_finalize(stmt); }
+  sqlite3_stmt* stmt = nullptr;
+};
+
+std::vector<std::uint8_t> blob(sqlite3_stmt* stmt, int column) {
+  const auto* data = static_cast<const std::uint8_t*>(sqlite3_column_blob(stmt, column));
+  return {data, data + sqlite3_column_bytes(stmt, column)};
+}
+
+std::string text(sqlite3_stmt* stmt, int column) {
+  const auto* data = sqlite3_column_text(stmt, column);
+  return data == nullptr ? "" : reinterpret_cast<const char*>(data);
+}
+
+}  // namespace
+
+Recording::Recording(const std::string& path, Access access) : path_(path) {
+  const int flags = access == Access::kCreate ? SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE
+                                              : SQLITE_OPEN_READONLY;
+  if (sqlite3_open_v2(path.c_str(), &db_, flags, nullptr) != SQLITE_OK) {
+    const std::string reason = db_ ? sqlite3_errmsg(db_) : "out of memory";
+    sqlite3_close(db_);
+    throw std::runtime_error(path + ": cannot open recording: " + reason);
+  }
+  if (access == Access::kRead) return;
+  writing_ = true;
+  // WAL + NORMAL: a committed transaction survives a crash of this process.
+  exec("PRAGMA journal_mode=WAL");
+  exec("PRAGMA synchronous=NORMAL");
+  exec("CREATE TABLE IF NOT EXISTS samples (topic TEXT NOT NULL, step INTEGER NOT NULL, "
+       "source TEXT NOT NULL, sim_time_ns INTEGER NOT NULL, payload BLOB NOT NULL)");
+  exec("CREATE TABLE IF NOT EXISTS meta (key TEXT PRIMARY KEY, value TEXT NOT NULL)");
+  exec("CREATE INDEX IF NOT EXISTS samples_by_topic ON samples (topic, source, step)");
+  if (sqlite3_prepare_v2(db_, "INSERT INTO samples VALUES (?, ?, ?, ?, ?)", -1, &insert_,
+                         nullptr) != SQLITE_OK) {
+    throw std::runtime_error(path + ": " + sqlite3_errmsg(db_));
+  }
+  exec("BEGIN");
+}
+
+Recording::~Recording() {
+  if (writing_) sqlite3_exec(db_, "COMMIT", nullptr, nullptr, nullptr);
+  sqlite3_finalize(insert_);
+  sqlite3_close(db_);
+}
+
+void Recording::exec(const char* sql) const {
+  char* error = nullptr;
+  if (sqlite3_exec(db_, sql, nullptr, nullptr, &error) != SQLITE_OK) {
+    const std::string reason = error ? error : "unknown error";
+    sqlite3_free(error);
+    throw std::runtime_error(path_ + ": " + sql + ": " + reason);
+  }
+}
+
+void Recording::insert(const std::string& topic, std::uint64_t step, const std::string& source,
+                       std::int64_t sim_time_ns, const std::vector<std::uint8_t>& payload) {
+  sqlite3_bind_text(insert_, 1, topic.c_str(), -1, SQLITE_TRANSIENT);
+  sqlite3_bind_int64(insert_, 2, static_cast<sqlite3_int64>(step));
+  sqlite3_bind_text(insert_, 3, source.c_str(), -1, SQLITE_TRANSIENT);
+  sqlite3_bind_int64(insert_, 4, sim_time_ns);
+  sqlite3_bind_blob(insert_, 5, payload.data(), static_cast<int>(payload.size()), SQLITE_TRANSIENT);
+  if (sqlite3_step(insert_) != SQLITE_DONE) {
+    throw std::runtime_error(path_ + ": insert failed: " + sqlite3_errmsg(db_));
+  }
+  sqlite3_reset(insert_);
+}
+
+void Recording::commit() {
+  exec("COMMIT");
+  exec("BEGIN");
+}
+
+void Recording::setMeta(const std::string& key, const std::string& value) {
+  Statement s(db_, "INSERT OR REPLACE INTO meta VALUES (?, ?)", path_);
+  sqlite3_bind_text(s.stmt, 1, key.c_str(), -1, SQLITE_TRANSIENT);
+  sqlite3_bind_text(s.stmt, 2, value.c_str(), -1, SQLITE_TRANSIENT);
+  if (sqlite3_step(s.stmt) != SQLITE_DONE) {
+    throw std::runtime_error(path_ + ": cannot write meta " + key + ": " + sqlite3_errmsg(db_));
+  }
+}
+
+std::string Recording::meta(const std::string& key) const {
+  Statement s(db_, "SELECT value FROM meta WHERE key = ?", path_);
+  sqlite3_bind_text(s.stmt, 1, key.c_str(), -1, SQLITE_TRANSIENT);
+  return sqlite3_step(s.stmt) == SQLITE_ROW ? text(s.stmt, 0) : "";
+}
+
+void Recording::forEach(
+    const std::string& topic,
+    const std::function<void(std::uint64_t, const std::string&, const std::vector<std::uint8_t>&)>&
+        visit) const {
+  Statement s(db_, "SELECT step, source, payload FROM samples WHERE topic = ? ORDER BY step, source",
+              path_);
+  sqlite3_bind_text(s.stmt, 1, topic.c_str(), -1, SQLITE_TRANSIENT);
+  while (sqlite3_step(s.stmt) == SQLITE_ROW) {
+    visit(static_cast<std::uint64_t>(sqlite3_column_int64(s.stmt, 0)), text(s.stmt, 1),
+          blob(s.stmt, 2));
+  }
+}
+
+std::uint64_t Recording::count(const std::string& topic) const {
+  Statement s(db_, "SELECT COUNT(*) FROM samples WHERE topic = ?", path_);
+  sqlite3_bind_text(s.stmt, 1, topic.c_str(), -1, SQLITE_TRANSIENT);
+  return sqlite3_step(s.stmt) == SQLITE_ROW ? static_cast<std::uint64_t>(sqlite3_column_int64(s.stmt, 0)) : 0;
+}
+
+std::string Recording::digest(const std::vector<std::string>& excluded) const {
+  std::unique_ptr<EVP_MD_CTX, decltype(&EVP_MD_CTX_free)> ctx(EVP_MD_CTX_new(), EVP_MD_CTX_free);
+  EVP_DigestInit_ex(ctx.get(), EVP_sha256(), nullptr);
+  Statement s(db_, "SELECT topic, source, step, payload FROM samples ORDER BY topic, source, step",
+              path_);
+  while (sqlite3_step(s.stmt) == SQLITE_ROW) {
+    const std::string topic = text(s.stmt, 0);
+    if (std::find(excluded.begin(), excluded.end(), topic) != excluded.end()) continue;
+    const std::string source = text(s.stmt, 1);
+    const auto step = static_cast<std::uint64_t>(sqlite3_column_int64(s.stmt, 2));
+    EVP_DigestUpdate(ctx.get(), topic.c_str(), topic.size() + 1);
+    EVP_DigestUpdate(ctx.get(), source.c_str(), source.size() + 1);
+    EVP_DigestUpdate(ctx.get(), &step, sizeof step);
+    EVP_DigestUpdate(ctx.get(), sqlite3_column_blob(s.stmt, 3),
+                     static_cast<std::size_t>(sqlite3_column_bytes(s.stmt, 3)));
+  }
+  unsigned char hash[EVP_MAX_MD_SIZE];
+  unsigned int length = 0;
+  EVP_DigestFinal_ex(ctx.get(), hash, &length);
+  static const char* kHex = "0123456789abcdef";
+  std::string hex;
+  for (unsigned int i = 0; i < length; ++i) {
+    hex += kHex[hash[i] >> 4];
+    hex += kHex[hash[i] & 15];
+  }
+  return hex;
+}
+
+}  // namespace flatsat::bus

@@ -1,0 +1,97 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "bus/Scenario.hpp"
+
+#include <filesystem>
+
+namespace flatsat::bus {
+
+Schedule Scenario::schedule() const {
+  Schedule schedule;
+  for (const auto& component : components) schedule[component.name] = component.rate_divider;
+  return schedule;
+}
+
+bool Scenario::hasComponent(const std::string& component) const {
+  for (const auto& entry : components) {
+    if (entry.name == component) return true;
+  }
+  return false;
+}
+
+ParamReader Scenario::componentParams(const std::string& component,
+                                      ConfigProblems& problems) const {
+  ParamReader reader(root["components"][component], file, "components." + component, problems);
+  std::uint32_t divider = 1;
+  reader.read("rate_divider", divider);  // marks the key as known; checked at load
+  return reader;
+}
+
+ParamReader Scenario::section(const std::string& key, ConfigProblems& problems) const {
+  return ParamReader(root[key], file, key, problems);
+}
+
+std::uint64_t Scenario::seedFor(const std::string& component) const {
+  std::uint64_t hash = 14695981039346656037ULL;
+  for (char c : component) {
+    hash ^= static_cast<unsigned char>(c);
+    hash *= 1099511628211ULL;
+  }
+  return seed ^ hash;
+}
+
+Scenario loadScenario(const std::string& path) {
+  if (!std::filesystem::exists(path)) throw ScenarioError(path + ": no such file");
+  Scenario scenario;
+  scenario.file = path;
+  try {
+    scenario.root = YAML::LoadFile(path);
+  } catch (const YAML::Exception& e) {
+    throw ScenarioError(path + ":" + std::to_string(e.mark.line + 1) + ":" +
+                        std::to_string(e.mark.column + 1) + ": not valid YAML: " + e.msg);
+  }
+  ConfigProblems problems;
+  ParamReader top(scenario.root, path, "", problems);
+  if (!scenario.root.IsMap()) throw ScenarioError(path + ": must be a YAML mapping");
+
+  top.read("name", scenario.name);
+  std::string description;
+  top.read("description", description);
+  std::string mode = "lockstep";
+  top.read("mode", mode);
+  if (mode != "lockstep") top.problem("mode", "'" + mode + "' is not a run mode (lockstep)");
+  top.read("domain_id", scenario.domain_id);
+  if (scenario.domain_id > 232) top.problem("domain_id", "must be in 0..232");
+  top.read("seed", scenario.seed);
+  top.read("step_s", scenario.step_s, "s");
+  if (!(scenario.step_s >= 1e-3 && scenario.step_s <= 10.0)) {
+    top.problem("step_s", "must be in [1 ms, 10 s]");
+  }
+  top.read("duration_s", scenario.duration_s, "s");
+  top.read("duration_orbits", scenario.duration_orbits, "-");
+  if ((scenario.duration_s > 0) == (scenario.duration_orbits > 0)) {
+    top.problem("", "give exactly one of duration_s or duration_orbits, > 0");
+  }
+  auto metrics = top.section("metrics");
+  metrics.read("acquisition_s", scenario.acquisition_s, "s");
+  if (scenario.acquisition_s < 0) metrics.problem("acquisition_s", "must be >= 0");
+  metrics.finish();
+
+  top.section("components");
+  if (!top.has("components")) top.problem("", "missing key 'components'");
+  for (const auto& entry : scenario.root["components"]) {
+    ComponentEntry component;
+    component.name = entry.first.as<std::string>();
+    ParamReader reader(entry.second, path, "components." + component.name, problems);
+    reader.read("rate_divider", component.rate_divider);
+    if (component.rate_divider < 1 || component.rate_divider > 1000) {
+      reader.problem("rate_divider", "must be in 1..1000");
+    }
+    scenario.components.push_back(component);
+  }
+  for (const auto& section : kPlantSections) top.section(section);
+  top.finish();
+  if (!problems.empty()) throw ScenarioError(path + ": invalid scenario:\n" + problems.joined());
+  return scenario;
+}
+
+}  // namespace flatsat::bus

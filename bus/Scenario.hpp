@@ -1,0 +1,60 @@
+// SPDX-License-Identifier: Apache-2.0
+#pragma once
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "bus/Node.hpp"
+#include "bus/Params.hpp"
+
+namespace flatsat::bus {
+
+/// A scenario file that failed to load; what() lists every problem.
+struct ScenarioError : std::runtime_error {
+  explicit ScenarioError(const std::string& what) : std::runtime_error(what) {}
+};
+
+enum class RunMode { kLockstep };
+
+/// One process of the rig as the scenario lists it.
+struct ComponentEntry {
+  std::string name;               ///< component name (= its kind for now)
+  std::uint32_t rate_divider = 1; ///< [-] runs when step % divider == 0, 1..1000
+};
+
+/// The top level of a scenario file. Component parameters stay as YAML
+/// nodes: each component reads its own section (componentParams()).
+struct Scenario {
+  std::string file;
+  YAML::Node root;
+  std::string name;
+  RunMode mode = RunMode::kLockstep;
+  std::uint32_t domain_id = 0;     ///< [-] 0..232; FLATSAT_DOMAIN overrides
+  std::uint64_t seed = 1;          ///< [-] base seed; each component derives its own
+  double step_s = 0.1;             ///< [s] base period, 1e-3..10
+  double duration_s = 0.0;         ///< [s] run length (or duration_orbits)
+  double duration_orbits = 0.0;    ///< [-] run length in orbital periods
+  double acquisition_s = 0.0;      ///< [s] metrics ignore pointing before this
+  std::vector<ComponentEntry> components;
+
+  Schedule schedule() const;
+  bool hasComponent(const std::string& name) const;
+  /// A reader over components.<name> with rate_divider already consumed.
+  ParamReader componentParams(const std::string& name, ConfigProblems& problems) const;
+  /// A reader over a top-level section (spacecraft, orbit, ...).
+  ParamReader section(const std::string& key, ConfigProblems& problems) const;
+  /// The component's seed: the scenario seed mixed with its name (FNV-1a).
+  std::uint64_t seedFor(const std::string& component) const;
+};
+
+/// Top-level sections that describe the plant; the dynamics server reads
+/// and checks them.
+inline const std::vector<std::string> kPlantSections = {"spacecraft", "orbit", "environment",
+                                                        "initial"};
+
+/// Loads and checks the top level; throws ScenarioError listing every
+/// problem as "file:line:col: key: reason".
+Scenario loadScenario(const std::string& path);
+
+}  // namespace flatsat::bus

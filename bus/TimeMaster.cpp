@@ -1,0 +1,127 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "bus/TimeMaster.hpp"
+
+#include <spdlog/spdlog.h>
+
+namespace flatsat::bus {
+
+TimeMaster::TimeMaster(Bus& bus, NodeOptions options, Timing timing)
+    : Node(bus, std::move(options)),
+      timing_(timing),
+      done_reader_(bus, topics::kStepDone,
+                   [this](const msg::StepDone& done) {
+                     {
+                       std::lock_guard lock(mutex_);
+                       done_[done.header().step()].insert(text(done.header().source()));
+                     }
+                     changed_.notify_all();
+                   }),
+      health_reader_(bus, topics::kHealth,
+                     [this](const msg::Health& health) {
+                       {
+                         std::lock_guard lock(mutex_);
+                         const auto source = text(health.header().source());
+                         states_[source] = health.state();
+                         messages_[source] = text(health.message());
+                       }
+                       changed_.notify_all();
+                     }),
+      grant_(bus, topics::kStepGrant) {
+  if (timing.period_ns <= 0) throw NodeFailure(name() + ": step period must be > 0");
+}
+
+std::string TimeMaster::failedComponents() const {
+  std::string failed;
+  for (const auto& [component, state] : states_) {
+    if (state == msg::ComponentState::FAILED) {
+      failed += " " + component + " (" + messages_.at(component) + ")";
+    }
+  }
+  return failed;
+}
+
+void TimeMaster::waitForComponents() {
+  waitUntilNothingMissing(
+      [this] {
+        if (auto failed = failedComponents(); !failed.empty()) {
+          throw NodeFailure(name() + ": component failed before the start:" + failed);
+        }
+        std::string missing;
+        for (const auto& [component, divider] : options_.schedule) {
+          if (component == name()) continue;
+          auto it = states_.find(component);
+          if (it == states_.end() || it->second != msg::ComponentState::READY) {
+            missing += " " + component;
+          }
+        }
+        return missing;
+      },
+      "waiting for every component to be READY");
+}
+
+void TimeMaster::waitForDone(std::uint64_t k) {
+  const auto deadline = std::chrono::steady_clock::now() + options_.step_timeout;
+  std::unique_lock lock(mutex_);
+  for (;;) {
+    std::string missing;
+    const auto& done = done_[k];
+    for (const auto& [component, divider] : options_.schedule) {
+      if (component != name() && k % divider == 0 && done.count(component) == 0) {
+        missing += " " + component;
+      }
+    }
+    if (missing.empty()) {
+      done_.erase(k);
+      return;
+    }
+    if (auto failed = failedComponents(); !failed.empty()) {
+      throw NodeFailure(name() + ": step " + std::to_string(k) + ": component failed:" + failed);
+    }
+    if (interrupted()) throw NodeFailure(name() + ": interrupted at step " + std::to_string(k));
+    if (std::chrono::steady_clock::now() > deadline) {
+      throw NodeFailure(name() + ": step " + std::to_string(k) + ": no StepDone within " +
+                        std::to_string(options_.step_timeout.count()) + " ms from:" + missing);
+    }
+    changed_.wait_for(lock, std::chrono::milliseconds(100));
+  }
+}
+
+void TimeMaster::run() {
+  try {
+    waitForProducers();
+    waitForComponents();
+    publishHealth(msg::ComponentState::RUNNING, 0, "granting steps");
+    spdlog::info("{}: every component ready; running steps 0..{}", name(), timing_.final_step);
+    for (std::uint64_t k = 0; k <= timing_.final_step; ++k) {
+      const StepContext ctx{k, static_cast<std::int64_t>(k) * timing_.period_ns,
+                            timing_.period_ns};
+      publishStep(ctx);
+      msg::StepGrant grant;
+      grant.header(makeHeader(ctx, name()));
+      grant.step_period_ns(timing_.period_ns);
+      grant.final_step(timing_.final_step);
+      grant_.write(grant);
+      waitForDone(k);
+      waitForInputs(k);
+      advance(ctx);
+      dropInputsBefore(k);
+    }
+    const StepContext end{timing_.final_step + 1,
+                          static_cast<std::int64_t>(timing_.final_step + 1) * timing_.period_ns,
+                          timing_.period_ns};
+    msg::StepGrant stop;
+    stop.header(makeHeader(end, name()));
+    stop.step_period_ns(timing_.period_ns);
+    stop.final_step(timing_.final_step);
+    stop.stop(true);
+    grant_.write(stop);
+    flushOutputs();
+    grant_.waitForAcknowledgments(std::chrono::seconds(5));
+    publishHealth(msg::ComponentState::STOPPED, timing_.final_step + 1, "run complete");
+  } catch (const NodeFailure& failure) {
+    publishHealth(msg::ComponentState::FAILED, 0, failure.what());
+    throw;
+  }
+}
+
+}  // namespace flatsat::bus

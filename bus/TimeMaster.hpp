@@ -1,0 +1,47 @@
+// SPDX-License-Identifier: Apache-2.0
+#pragma once
+#include <map>
+#include <set>
+
+#include "bus/Node.hpp"
+
+namespace flatsat::bus {
+
+/// The server side of the lockstep protocol: owns simulated time. It starts
+/// once every scheduled component reported READY; at each step k it
+/// publishes the step's data and the grant, waits for StepDone(k) from every
+/// component due at k and for its own inputs stamped k, then advances.
+class TimeMaster : public Node {
+ public:
+  struct Timing {
+    std::int64_t period_ns = 100'000'000;  ///< [ns] base step period, > 0
+    std::uint64_t final_step = 0;          ///< [-] index of the last step
+  };
+
+  TimeMaster(Bus& bus, NodeOptions options, Timing timing);
+
+  /// Runs every step, then the stop grant. Throws NodeFailure naming the
+  /// component that failed or stalled.
+  void run();
+
+ protected:
+  /// Publishes what the time master produces for step k (before the grant).
+  virtual void publishStep(const StepContext& ctx) = 0;
+  /// Applies the inputs stamped k over [t_k, t_k+1).
+  virtual void advance(const StepContext& ctx) = 0;
+
+ private:
+  void waitForComponents();
+  void waitForDone(std::uint64_t k);
+  std::string failedComponents() const;
+
+  Timing timing_;
+  std::map<std::uint64_t, std::set<std::string>> done_;
+  std::map<std::string, msg::ComponentState> states_;
+  std::map<std::string, std::string> messages_;
+  ReaderOf<topics::kStepDone> done_reader_;
+  ReaderOf<topics::kHealth> health_reader_;
+  WriterOf<topics::kStepGrant> grant_;
+};
+
+}  // namespace flatsat::bus

@@ -1,0 +1,62 @@
+// SPDX-License-Identifier: Apache-2.0
+#pragma once
+// The topic registry: the one place that binds a topic name to its IDL type,
+// its QoS preset and its logical producer (PX4's ORB_ID()). Nothing else
+// writes topic-name literals.
+#include <string_view>
+
+#include "bus/Qos.hpp"
+#include "msg/ActuationPubSubTypes.h"
+#include "msg/EstimationPubSubTypes.h"
+#include "msg/HealthPubSubTypes.h"
+#include "msg/SensorsPubSubTypes.h"
+#include "msg/StepPubSubTypes.h"
+#include "msg/TruthPubSubTypes.h"
+
+namespace flatsat::bus {
+
+template <class Sample, class PubSub>
+struct TopicDef {
+  using Type = Sample;
+  using PubSubType = PubSub;
+  std::string_view name;
+  QosKind qos;
+  /// Component that publishes it; empty: every component does.
+  std::string_view producer;
+};
+
+namespace topics {
+using namespace flatsat::msg;
+inline constexpr TopicDef<StepGrant, StepGrantPubSubType> kStepGrant{
+    "flatsat/step_grant", QosKind::kStepped, "dynamics_server"};
+inline constexpr TopicDef<StepDone, StepDonePubSubType> kStepDone{
+    "flatsat/step_done", QosKind::kStepped, ""};
+inline constexpr TopicDef<TruthState, TruthStatePubSubType> kTruth{
+    "flatsat/truth", QosKind::kStepped, "dynamics_server"};
+inline constexpr TopicDef<MagnetometerReading, MagnetometerReadingPubSubType> kMagnetometer{
+    "flatsat/magnetometer", QosKind::kStepped, "magnetometer"};
+inline constexpr TopicDef<SunSensorReading, SunSensorReadingPubSubType> kSunSensor{
+    "flatsat/sun_sensor", QosKind::kStepped, "sun_sensor"};
+inline constexpr TopicDef<GyroReading, GyroReadingPubSubType> kGyro{
+    "flatsat/gyro", QosKind::kStepped, "gyro"};
+inline constexpr TopicDef<WheelTachReading, WheelTachReadingPubSubType> kWheelTach{
+    "flatsat/wheel_tach", QosKind::kStepped, "wheel_tach"};
+inline constexpr TopicDef<AttitudeEstimate, AttitudeEstimatePubSubType> kAttitudeEstimate{
+    "flatsat/attitude_estimate", QosKind::kStepped, "estimator"};
+inline constexpr TopicDef<WheelTorqueCmd, WheelTorqueCmdPubSubType> kWheelTorqueCmd{
+    "flatsat/wheel_torque_cmd", QosKind::kStepped, "attitude_controller"};
+inline constexpr TopicDef<DipoleCmd, DipoleCmdPubSubType> kDipoleCmd{
+    "flatsat/dipole_cmd", QosKind::kStepped, "unloading_controller"};
+inline constexpr TopicDef<Health, HealthPubSubType> kHealth{
+    "flatsat/health", QosKind::kState, ""};
+}  // namespace topics
+
+/// Calls f(def) for every topic of the registry (recorder, tools).
+template <class F>
+void forEachTopic(F&& f) {
+  using namespace topics;
+  f(kStepGrant); f(kStepDone); f(kTruth); f(kMagnetometer); f(kSunSensor); f(kGyro);
+  f(kWheelTach); f(kAttitudeEstimate); f(kWheelTorqueCmd); f(kDipoleCmd); f(kHealth);
+}
+
+}  // namespace flatsat::bus

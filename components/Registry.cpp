@@ -1,0 +1,74 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "components/Registry.hpp"
+
+#include "components/attitude_controller/AttitudeControllerNode.hpp"
+#include "components/estimator/EstimatorNode.hpp"
+#include "components/gyro/GyroNode.hpp"
+#include "components/magnetometer/MagnetometerNode.hpp"
+#include "components/recorder/RecorderNode.hpp"
+#include "components/sun_sensor/SunSensorNode.hpp"
+#include "components/unloading_controller/UnloadingControllerNode.hpp"
+#include "components/wheel_tach/WheelTachNode.hpp"
+#include "sim/DynamicsServerParams.hpp"
+
+namespace flatsat {
+
+namespace {
+
+template <class Read>
+ComponentKind kind(const std::string& name, Read read) {
+  return {name, "flatsat-" + name,
+          [read](const bus::Scenario& s, const bus::NodeArgs& a, bus::ConfigProblems& p) {
+            read(s, a, p);
+          }};
+}
+
+}  // namespace
+
+const std::vector<ComponentKind>& componentKinds() {
+  static const std::vector<ComponentKind> kinds = {
+      kind("dynamics_server",
+           [](const bus::Scenario& s, const bus::NodeArgs& a, bus::ConfigProblems& p) {
+             return sim::readDynamicsServerParams(s, a.name, p);
+           }),
+      kind("magnetometer", magnetometer::readParams),
+      kind("sun_sensor", sun_sensor::readParams),
+      kind("gyro", gyro::readParams),
+      kind("wheel_tach", wheel_tach::readParams),
+      kind("estimator", estimator::readParams),
+      kind("attitude_controller", attitude_controller::readParams),
+      kind("unloading_controller", unloading_controller::readParams),
+      kind("recorder", recorder::readParams),
+  };
+  return kinds;
+}
+
+const ComponentKind* findComponentKind(const std::string& name) {
+  for (const auto& k : componentKinds()) {
+    if (k.name == name) return &k;
+  }
+  return nullptr;
+}
+
+std::vector<std::string> checkScenario(const bus::Scenario& scenario, const std::string& out_dir) {
+  bus::ConfigProblems problems;
+  for (const auto& component : scenario.components) {
+    const ComponentKind* k = findComponentKind(component.name);
+    if (k == nullptr) {
+      std::string known;
+      for (const auto& each : componentKinds()) known += " " + each.name;
+      problems.add(scenario.file + ": components." + component.name +
+                   ": unknown component (known:" + known + ")");
+      continue;
+    }
+    k->check(scenario, {scenario.file, component.name, out_dir}, problems);
+  }
+  for (const char* required : {"dynamics_server", "recorder"}) {
+    if (!scenario.hasComponent(required)) {
+      problems.add(scenario.file + ": components: the rig needs a " + std::string(required));
+    }
+  }
+  return problems.list();
+}
+
+}  // namespace flatsat

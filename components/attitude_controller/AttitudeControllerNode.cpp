@@ -1,0 +1,62 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "components/attitude_controller/AttitudeControllerNode.hpp"
+
+#include "bus/Convert.hpp"
+#include "sim/DynamicsServerParams.hpp"
+
+namespace flatsat::attitude_controller {
+
+namespace {
+
+SunPointingControllerInput toInput(const msg::AttitudeEstimate& estimate,
+                                   const msg::WheelTachReading& tach) {
+  SunPointingControllerInput in;
+  in.sun_B_est_unit = bus::vec3(estimate.sun_body_unit());
+  in.w_NB_B_rad_s = bus::vec3(estimate.w_body_rad_s());
+  in.wheel_speed_rad_s = bus::vec4(tach.wheel_speed_rad_s());
+  in.valid = estimate.initialized();
+  return in;
+}
+
+msg::WheelTorqueCmd toMessage(const SunPointingControllerOutput& out) {
+  msg::WheelTorqueCmd m;
+  bus::put(m.torque_Nm(), out.wheel_torque_Nm);
+  bus::put(m.tau_body_cmd_Nm(), out.tau_cmd_B_Nm);
+  m.pointing_error_rad(out.pointing_error_rad);
+  m.saturated(out.saturated);
+  return m;
+}
+
+}  // namespace
+
+AttitudeControllerNode::AttitudeControllerNode(bus::Bus& bus, bus::NodeOptions options,
+                                               const SunPointingControllerParams& params)
+    : Component(bus, std::move(options)), controller_(params) {}
+
+void AttitudeControllerNode::step(const bus::StepContext& ctx) {
+  auto message = toMessage(
+      controller_.step(toInput(estimate_.at(ctx.step), tach_.at(ctx.step)), ctx.sim_time_ns));
+  message.header(bus::makeHeader(ctx, name()));
+  command_.write(message);
+}
+
+SunPointingControllerParams readParams(const bus::Scenario& scenario, const bus::NodeArgs& args,
+                                       bus::ConfigProblems& problems) {
+  bus::ConfigProblems reported_by_dynamics_server;
+  const auto body = sim::readPlant(scenario, reported_by_dynamics_server).body;
+  SunPointingControllerParams p;
+  p.wheel_count = body.wheel_count;
+  p.wheel_axes_B = body.wheel_axes_B;
+  p.wheel_inertia_kg_m2 = body.wheel_inertia_kg_m2;
+  auto r = scenario.componentParams(args.name, problems);
+  r.read("kp_Nm_per_rad", p.kp_Nm_per_rad, "N m/rad");
+  r.read("kd_Nm_s_per_rad", p.kd_Nm_s_per_rad, "N m s/rad");
+  r.read("max_torque_Nm", p.max_torque_Nm, "N m");
+  r.read("max_rate_rad_s", p.max_rate_rad_s, "rad/s");
+  r.read("pointing_axis_body", p.pointing_axis_B, "-");
+  r.problems(p.validate());
+  r.finish();
+  return p;
+}
+
+}  // namespace flatsat::attitude_controller

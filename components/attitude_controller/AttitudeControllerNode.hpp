@@ -1,0 +1,31 @@
+// SPDX-License-Identifier: Apache-2.0
+#pragma once
+#include "bus/Component.hpp"
+#include "bus/NodeMain.hpp"
+#include "components/attitude_controller/SunPointingController.hpp"
+
+namespace flatsat::attitude_controller {
+
+/// Wheel-based Sun pointing: attitude estimate and wheel speeds in, wheel
+/// motor torques out.
+class AttitudeControllerNode final : public bus::Component {
+ public:
+  AttitudeControllerNode(bus::Bus& bus, bus::NodeOptions options,
+                         const SunPointingControllerParams& params);
+
+ private:
+  void step(const bus::StepContext& ctx) override;
+
+  bus::InputOf<bus::topics::kAttitudeEstimate>& estimate_ =
+      addInput(bus::topics::kAttitudeEstimate);
+  bus::InputOf<bus::topics::kWheelTach>& tach_ = addInput(bus::topics::kWheelTach);
+  bus::WriterOf<bus::topics::kWheelTorqueCmd>& command_ =
+      addOutput(bus::topics::kWheelTorqueCmd);
+  SunPointingController controller_;
+};
+
+/// components.<name>, with the wheel geometry from spacecraft.wheels.
+SunPointingControllerParams readParams(const bus::Scenario& scenario, const bus::NodeArgs& args,
+                                       bus::ConfigProblems& problems);
+
+}  // namespace flatsat::attitude_controller

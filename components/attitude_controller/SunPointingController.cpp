@@ -1,0 +1,100 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "components/attitude_controller/SunPointingController.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include <Eigen/Dense>
+
+namespace flatsat::attitude_controller {
+
+namespace {
+constexpr double kUnitTolerance = 1e-6;
+}  // namespace
+
+std::vector<std::string> SunPointingControllerParams::validate() const {
+  std::vector<std::string> errors;
+  if (!(kp_Nm_per_rad > 0.0) || !std::isfinite(kp_Nm_per_rad)) {
+    errors.emplace_back("kp_Nm_per_rad: must be finite and > 0");
+  }
+  if (!(kd_Nm_s_per_rad > 0.0) || !std::isfinite(kd_Nm_s_per_rad)) {
+    errors.emplace_back("kd_Nm_s_per_rad: must be finite and > 0");
+  }
+  if (!(max_torque_Nm > 0.0) || !std::isfinite(max_torque_Nm)) {
+    errors.emplace_back("max_torque_Nm: must be finite and > 0");
+  }
+  if (!(max_rate_rad_s > 0.0) || !std::isfinite(max_rate_rad_s)) {
+    errors.emplace_back("max_rate_rad_s: must be finite and > 0");
+  }
+  if (!pointing_axis_B.allFinite() || !(std::abs(pointing_axis_B.norm() - 1.0) <= kUnitTolerance)) {
+    errors.emplace_back("pointing_axis_B: must be a unit vector");
+  }
+  if (wheel_count < 1 || wheel_count > 4) {
+    errors.emplace_back("wheel_count: must be in 1..4");
+  } else {
+    for (int i = 0; i < wheel_count; ++i) {
+      const Eigen::Vector3d a = wheel_axes_B.col(i);
+      if (!a.allFinite() || !(std::abs(a.norm() - 1.0) <= kUnitTolerance)) {
+        errors.emplace_back("wheel_axes_B: column " + std::to_string(i) + " must be a unit vector");
+      }
+      if (!(wheel_inertia_kg_m2[i] > 0.0) || !std::isfinite(wheel_inertia_kg_m2[i])) {
+        errors.emplace_back("wheel_inertia_kg_m2: wheel " + std::to_string(i) + " must be finite and > 0");
+      }
+    }
+  }
+  return errors;
+}
+
+SunPointingController::SunPointingController(const Params& params)
+    : params_(params), A_B_(Eigen::Matrix<double, 3, 4>::Zero()),
+      A_pinv_(Eigen::Matrix<double, 4, 3>::Zero()),
+      max_error_rad_(params.max_rate_rad_s * params.kd_Nm_s_per_rad / params.kp_Nm_per_rad) {
+  if (const auto errors = params_.validate(); !errors.empty()) {
+    std::string message = "SunPointingControllerParams invalid:";
+    for (const auto& e : errors) {
+      message += " " + e + ";";
+    }
+    throw std::invalid_argument(message);
+  }
+  const int n = params_.wheel_count;
+  A_B_.leftCols(n) = params_.wheel_axes_B.leftCols(n);
+  // Minimum-norm least-squares inverse: exact torque with ≥ 3 independent axes, the closest
+  // achievable torque with fewer (a failed-wheel configuration).
+  const Eigen::MatrixXd A = A_B_.leftCols(n);
+  A_pinv_.topRows(n) = A.completeOrthogonalDecomposition().pseudoInverse();
+}
+
+void SunPointingController::reset() {}
+
+SunPointingControllerOutput SunPointingController::step(const Input& in, std::int64_t /*t_ns*/) {
+  Output out;
+  const double sun_norm = in.sun_B_est_unit.norm();
+  if (!in.valid || !(sun_norm > 0.0)) {
+    return out;
+  }
+  const Eigen::Vector3d s = in.sun_B_est_unit / sun_norm;
+  const Eigen::Vector3d& a = params_.pointing_axis_B;
+  const Eigen::Vector3d c = a.cross(s);
+  const double sin_angle = c.norm();
+  const double angle = std::atan2(sin_angle, a.dot(s));
+  // Exactly anti-parallel: every axis normal to a is a shortest rotation; any one will do.
+  const Eigen::Vector3d e_axis = sin_angle > 0.0 ? Eigen::Vector3d(c / sin_angle) : a.unitOrthogonal();
+  out.rate_limited = angle > max_error_rad_;
+  const Eigen::Vector3d e = std::min(angle, max_error_rad_) * e_axis;
+
+  const Eigen::Vector3d h_wheels_B = A_B_ * params_.wheel_inertia_kg_m2.cwiseProduct(in.wheel_speed_rad_s);
+  Eigen::Vector3d tau = params_.kp_Nm_per_rad * e - params_.kd_Nm_s_per_rad * in.w_NB_B_rad_s +
+                        in.w_NB_B_rad_s.cross(h_wheels_B);
+  const double tau_norm = tau.norm();
+  if (tau_norm > params_.max_torque_Nm) {
+    tau *= params_.max_torque_Nm / tau_norm;
+    out.saturated = true;
+  }
+  out.wheel_torque_Nm = -A_pinv_ * tau;
+  out.tau_cmd_B_Nm = -A_B_ * out.wheel_torque_Nm;
+  out.pointing_error_rad = angle;
+  return out;
+}
+
+}  // namespace flatsat::attitude_controller

@@ -1,0 +1,79 @@
+// SPDX-License-Identifier: Apache-2.0
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace flatsat::attitude_controller {
+
+/// PD gains, rate and torque limits and wheel geometry of the Sun-pointing loop.
+struct SunPointingControllerParams {
+  double kp_Nm_per_rad = 0.02;    // [Nm/rad] attitude gain, > 0
+  double kd_Nm_s_per_rad = 0.2;   // [Nm·s/rad] rate gain, > 0
+  double max_torque_Nm = 0.01;    // [Nm] limit of |τ_cmd|, > 0
+  double max_rate_rad_s = 0.005;  // [rad/s] limit of the slew rate k_p/k_d·|e|, > 0
+  Eigen::Vector3d pointing_axis_B = Eigen::Vector3d::UnitX();  // [-] body axis put on the Sun, unit
+  int wheel_count = 3;            // [-] active wheels (slots 0..wheel_count-1), 1..4
+  // [-] spin axes in body axes, unit columns for the active wheels (default x, y, z; slot 3 unused)
+  Eigen::Matrix<double, 3, 4> wheel_axes_B = Eigen::Matrix<double, 3, 4>::Identity();
+  // [kg·m²] rotor inertia about its spin axis, > 0 for the active wheels
+  Eigen::Vector4d wheel_inertia_kg_m2 = Eigen::Vector4d::Constant(1.0e-4);
+
+  /// Every violation as "field: reason"; empty when valid.
+  std::vector<std::string> validate() const;
+};
+
+struct SunPointingControllerInput {
+  Eigen::Vector3d sun_B_est_unit = Eigen::Vector3d::Zero();     // [-] estimated Sun direction, body
+  Eigen::Vector3d w_NB_B_rad_s = Eigen::Vector3d::Zero();       // [rad/s] estimated body rate
+  Eigen::Vector4d wheel_speed_rad_s = Eigen::Vector4d::Zero();  // [rad/s] tachometers, rel. to body
+  bool valid = false;  // estimate usable; false → zero torque
+};
+
+struct SunPointingControllerOutput {
+  Eigen::Vector3d tau_cmd_B_Nm = Eigen::Vector3d::Zero();     // [Nm] torque the wheels put on the body
+  Eigen::Vector4d wheel_torque_Nm = Eigen::Vector4d::Zero();  // [Nm] motor torque per wheel (spins it up)
+  double pointing_error_rad = 0.0;  // [rad] angle axis ↔ Sun; 0 when !valid
+  bool rate_limited = false;        // the P term was limited to ask for max_rate_rad_s
+  bool saturated = false;           // |τ| was limited to max_torque_Nm
+};
+
+/// Wheel-based Sun pointing of one body axis (ROSAT: +x on the Sun, roll left free).
+///
+/// τ = k_p·e − k_d·ω + ω × h_w with e = θ·(a × s)/|a × s| the rotation vector taking the axis
+/// a onto the Sun s and h_w = Σ a_i I_i Ω_i: the quaternion-feedback regulator of Wie, Weiss &
+/// Arapostathis 1989 (J. Guidance 12(3)), u = −K q_e − C ω + ω × (Jω + h), with the
+/// angle-scaled error in place of the quaternion vector part and without ω × Jω (J is not a
+/// parameter here). The ω × h_w term cancels the gyroscopic coupling of the stored momentum in
+/// J ω̇ = −ω × (Jω + h_w) − ḣ_w. For large errors the proportional term is limited so that the
+/// rate it commands, k_p/k_d·|e|, stays below max_rate_rad_s — the eigenaxis slew with rate
+/// limit of Wie, Bailey & Heiberg 2002 (J. Guidance 25(1)) — which bounds the momentum a slew
+/// puts into the wheels. Motor torques τ_m = −A⁺τ, since the body feels −A τ_m.
+class SunPointingController {
+ public:
+  using Params = SunPointingControllerParams;
+  using Input = SunPointingControllerInput;
+  using Output = SunPointingControllerOutput;
+
+  /// @throws std::invalid_argument listing every violation of params.validate().
+  explicit SunPointingController(const Params& params);
+
+  /// Stateless law: nothing to forget; kept for the common API.
+  void reset();
+
+  /// The law does not depend on time; t_ns [ns] is kept for the common API.
+  Output step(const Input& in, std::int64_t t_ns);
+
+  const Params& params() const { return params_; }
+
+ private:
+  Params params_;
+  Eigen::Matrix<double, 3, 4> A_B_;      // active axes, unused columns zero
+  Eigen::Matrix<double, 4, 3> A_pinv_;   // A⁺ of the active axes, unused rows zero
+  double max_error_rad_;                 // [rad] |e| at which k_p·|e|/k_d reaches max_rate_rad_s
+};
+
+}  // namespace flatsat::attitude_controller

@@ -1,0 +1,46 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "components/estimator/ReferenceModel.hpp"
+
+#include <stdexcept>
+
+#include "sim/DynamicsModel.hpp"
+#include "sim/SunEphemeris.hpp"
+
+namespace flatsat::estimator {
+
+std::vector<std::string> ReferenceModelParams::validate() const {
+  std::vector<std::string> problems;
+  for (const auto& p : orbit.validate()) problems.push_back("orbit." + p);
+  return problems;
+}
+
+namespace {
+const ReferenceModelParams& checked(const ReferenceModelParams& p) {
+  if (auto problems = p.validate(); !problems.empty()) {
+    std::string all;
+    for (const auto& problem : problems) all += problem + "; ";
+    throw std::invalid_argument("ReferenceModelParams: " + all);
+  }
+  return p;
+}
+}  // namespace
+
+ReferenceModel::ReferenceModel(const Params& params)
+    : params_(checked(params)),
+      orbit_(params.orbit),
+      field_(params.field),
+      jd_epoch_(sim::julianDate(params.epoch)) {}
+
+ReferenceVectors ReferenceModel::step(std::int64_t t_ns) const {
+  const double t_s = sim::toSeconds(t_ns);
+  const double jd = jd_epoch_ + t_s / 86400.0;
+  const Eigen::Vector3d r_N = orbit_.at(t_s).r_N_m;
+  const Eigen::Matrix3d R_EN = sim::R_EN(jd);
+  ReferenceVectors out;
+  out.b_N_T = R_EN.transpose() * field_.b_E_T(R_EN * r_N);
+  out.sun_N_unit =
+      (sim::sunPosition_N_m(jd + sim::kTtMinusUtc_s / 86400.0) - r_N).normalized();
+  return out;
+}
+
+}  // namespace flatsat::estimator

@@ -1,0 +1,44 @@
+// SPDX-License-Identifier: Apache-2.0
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "sim/GeomagneticField.hpp"
+#include "sim/KeplerOrbit.hpp"
+#include "sim/Time.hpp"
+
+namespace flatsat::estimator {
+
+/// Onboard knowledge the estimator compares its sensors with: an orbit
+/// propagator, a field model and a Sun ephemeris (the same models the
+/// dynamics server uses, as an onboard computer would carry them).
+struct ReferenceModelParams {
+  sim::UtcEpoch epoch;               // scenario epoch (t = 0), UTC
+  sim::OrbitElements orbit;          // onboard orbit knowledge at the epoch
+  sim::DipoleCoefficients field;     // [nT] onboard field model coefficients
+  std::vector<std::string> validate() const;
+};
+
+struct ReferenceVectors {
+  Eigen::Vector3d sun_N_unit = Eigen::Vector3d::UnitX();  // [-] spacecraft -> Sun, inertial
+  Eigen::Vector3d b_N_T = Eigen::Vector3d::Zero();        // [T] field at the spacecraft, inertial
+};
+
+class ReferenceModel {
+ public:
+  using Params = ReferenceModelParams;
+  explicit ReferenceModel(const Params& params);
+  void reset() {}
+  ReferenceVectors step(std::int64_t t_ns) const;
+
+ private:
+  Params params_;
+  sim::KeplerOrbit orbit_;
+  sim::TiltedDipoleField field_;
+  double jd_epoch_;  // [d] UTC ≈ UT1
+};
+
+}  // namespace flatsat::estimator

@@ -1,0 +1,24 @@
+// SPDX-License-Identifier: Apache-2.0
+#pragma once
+#include "bus/Convert.hpp"
+#include "bus/NodeMain.hpp"
+#include "components/common/EmulatorNode.hpp"
+#include "components/gyro/GyroModel.hpp"
+
+namespace flatsat::gyro {
+
+inline GyroInput toInput(const msg::TruthState& truth) { return {bus::vec3(truth.w_body_rad_s())}; }
+
+inline msg::GyroReading toMessage(const GyroOutput& out) {
+  msg::GyroReading m;
+  bus::put(m.w_body_rad_s(), out.w_NB_B_rad_s);
+  return m;
+}
+
+using GyroNode = EmulatorNode<GyroModel, bus::topics::kGyro, toInput, toMessage>;
+
+/// components.<name> of the scenario.
+GyroParams readParams(const bus::Scenario& scenario, const bus::NodeArgs& args,
+                      bus::ConfigProblems& problems);
+
+}  // namespace flatsat::gyro

@@ -1,0 +1,27 @@
+// SPDX-License-Identifier: Apache-2.0
+#pragma once
+#include "bus/Convert.hpp"
+#include "bus/NodeMain.hpp"
+#include "components/common/EmulatorNode.hpp"
+#include "components/magnetometer/MagnetometerModel.hpp"
+
+namespace flatsat::magnetometer {
+
+inline MagnetometerInput toInput(const msg::TruthState& truth) {
+  return {bus::vec3(truth.b_body_T())};
+}
+
+inline msg::MagnetometerReading toMessage(const MagnetometerOutput& out) {
+  msg::MagnetometerReading m;
+  bus::put(m.b_body_T(), out.b_B_T);
+  m.saturated(out.saturated);
+  return m;
+}
+
+using MagnetometerNode = EmulatorNode<MagnetometerModel, bus::topics::kMagnetometer, toInput, toMessage>;
+
+/// components.<name> of the scenario.
+MagnetometerParams readParams(const bus::Scenario& scenario, const bus::NodeArgs& args,
+                              bus::ConfigProblems& problems);
+
+}  // namespace flatsat::magnetometer

@@ -1,0 +1,43 @@
+// SPDX-License-Identifier: Apache-2.0
+#pragma once
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "bus/Component.hpp"
+#include "bus/NodeMain.hpp"
+#include "bus/Recording.hpp"
+
+namespace flatsat::recorder {
+
+struct RecorderParams {
+  std::string path;                   // recording file (SQLite), created
+  std::uint32_t commit_every_steps = 50;  // [-] steps per transaction, 1..100000
+  std::vector<std::string> validate() const;
+};
+
+/// Records every stepped topic of the rig, gated like any component: it
+/// reports StepDone(k) only once every sample due at k is stored, so the
+/// recording is complete by construction. Health is recorded as it comes.
+class RecorderNode final : public bus::Component {
+ public:
+  RecorderNode(bus::Bus& bus, bus::NodeOptions options, const RecorderParams& params);
+
+ private:
+  void step(const bus::StepContext& ctx) override;
+  template <class Def>
+  void record(const Def& def);
+
+  RecorderParams params_;
+  std::mutex recording_mutex_;  // the step thread and the health callback both insert
+  bus::Recording recording_;
+  std::vector<std::function<void(std::uint64_t step)>> store_;  // one per recorded topic
+  std::unique_ptr<bus::ReaderOf<bus::topics::kHealth>> health_;
+};
+
+/// components.<name>; the file goes to the run directory (--out).
+RecorderParams readParams(const bus::Scenario& scenario, const bus::NodeArgs& args,
+                          bus::ConfigProblems& problems);
+
+}  // namespace flatsat::recorder

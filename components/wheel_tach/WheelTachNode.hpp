@@ -1,0 +1,26 @@
+// SPDX-License-Identifier: Apache-2.0
+#pragma once
+#include "bus/Convert.hpp"
+#include "bus/NodeMain.hpp"
+#include "components/common/EmulatorNode.hpp"
+#include "components/wheel_tach/WheelTachModel.hpp"
+
+namespace flatsat::wheel_tach {
+
+inline WheelTachInput toInput(const msg::TruthState& truth) {
+  return {bus::vec4(truth.wheel_speed_rad_s())};
+}
+
+inline msg::WheelTachReading toMessage(const WheelTachOutput& out) {
+  msg::WheelTachReading m;
+  bus::put(m.wheel_speed_rad_s(), out.wheel_speed_rad_s);
+  return m;
+}
+
+using WheelTachNode = EmulatorNode<WheelTachModel, bus::topics::kWheelTach, toInput, toMessage>;
+
+/// components.<name> of the scenario; the wheel count comes from spacecraft.wheels.
+WheelTachParams readParams(const bus::Scenario& scenario, const bus::NodeArgs& args,
+                           bus::ConfigProblems& problems);
+
+}  // namespace flatsat::wheel_tach

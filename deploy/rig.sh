@@ -1,0 +1,56 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
+# One entry point for a fresh Debian 12 machine (as root) or a developer box:
+#   deploy/rig.sh run [SCENARIO] [flatsat run options]  install, build, run (default scenario)
+#   deploy/rig.sh test                                   install, build, run every test
+#   deploy/rig.sh build | deps                           just those steps
+# Safe to re-run: it installs only what is missing and builds incrementally.
+set -euo pipefail
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+build="${FLATSAT_BUILD_DIR:-$here/build}"
+jobs="${FLATSAT_JOBS:-2}"
+
+packages=(
+  build-essential cmake pkg-config
+  libfastrtps-dev libfastcdr-dev fastddsgen fastdds-tools
+  libeigen3-dev catch2 libspdlog-dev libyaml-cpp-dev libcli11-dev nlohmann-json3-dev
+  libsqlite3-dev sqlite3 libssl-dev
+  iproute2 tcpdump procps
+)
+
+deps() {
+  local missing=()
+  for p in "${packages[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+  done
+  [ ${#missing[@]} -eq 0 ] && return 0
+  echo "rig.sh: installing ${missing[*]}" >&2
+  local sudo=""
+  [ "$(id -u)" -ne 0 ] && sudo="sudo"
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >&2
+}
+
+build() {
+  cmake -S "$here" -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
+  cmake --build "$build" -j"$jobs"
+}
+
+cmd="${1:-run}"
+[ $# -gt 0 ] && shift
+case "$cmd" in
+  deps) deps ;;
+  build) deps; build ;;
+  run)
+    deps; build
+    scenario="$here/deploy/scenarios/default.yaml"
+    if [ $# -gt 0 ] && [[ "$1" != -* ]]; then scenario="$1"; shift; fi
+    exec "$build/bin/flatsat" run "$scenario" "$@"
+    ;;
+  test)
+    deps; build
+    cd "$build"
+    exec ctest --output-on-failure -j"$jobs" --timeout 1500
+    ;;
+  *) echo "usage: $0 run [SCENARIO] [options] | test | build | deps" >&2; exit 2 ;;
+esac

@@ -1,0 +1,52 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "sim/DynamicsModel.hpp"
+
+#include <cmath>
+
+#include "sim/Format.hpp"
+
+namespace flatsat::sim {
+namespace {
+
+constexpr double kUnitNormTolerance = 1e-6;
+
+void appendNested(const std::string& prefix, const std::vector<std::string>& nested, std::vector<std::string>& errors) {
+  for (const std::string& error : nested) errors.push_back(prefix + "." + error);
+}
+
+}  // namespace
+
+std::vector<std::string> DynamicsParams::validate() const {
+  std::vector<std::string> errors;
+  appendNested("epoch", epoch.validate(), errors);
+  appendNested("orbit", orbit.validate(), errors);
+  const std::vector<std::string> body_errors = body.validate();
+  appendNested("body", body_errors, errors);
+
+  if (!std::isfinite(field.g10_nT) || !std::isfinite(field.g11_nT) || !std::isfinite(field.h11_nT)) {
+    errors.push_back("field: Gauss coefficients must be finite");
+  }
+  if (!torquer_max_dipole_Am2.allFinite() || (torquer_max_dipole_Am2.array() < 0.0).any()) {
+    errors.push_back("torquer_max_dipole_Am2: every coil limit must be finite and ≥ 0");
+  }
+  if (!disturbance_torque_B_Nm.allFinite()) errors.push_back("disturbance_torque_B_Nm: must be finite");
+  if (substeps < 1) errors.push_back("substeps: " + std::to_string(substeps) + " must be ≥ 1");
+  if (!q0_NB.coeffs().allFinite() || std::abs(q0_NB.norm() - 1.0) > kUnitNormTolerance) {
+    errors.push_back("q0_NB: must be a unit quaternion (norm " + formatNumber(q0_NB.norm()) + ")");
+  }
+  if (!w0_NB_B_rad_s.allFinite()) errors.push_back("w0_NB_B_rad_s: must be finite");
+  if (!wheel_speed0_rad_s.allFinite()) {
+    errors.push_back("wheel_speed0_rad_s: must be finite");
+  } else if (body_errors.empty()) {
+    for (int i = 0; i < body.wheel_count; ++i) {
+      const double momentum = body.wheel_inertia_kg_m2(i) * wheel_speed0_rad_s(i);
+      if (std::abs(momentum) > body.wheel_max_momentum_Nms(i)) {
+        errors.push_back("wheel_speed0_rad_s[" + std::to_string(i) + "]: momentum " + formatNumber(momentum) +
+                         " N m s exceeds body.wheel_max_momentum_Nms " + formatNumber(body.wheel_max_momentum_Nms(i)));
+      }
+    }
+  }
+  return errors;
+}
+
+}  // namespace flatsat::sim

@@ -1,0 +1,65 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "sim/DynamicsServerNode.hpp"
+
+#include "bus/Convert.hpp"
+
+namespace flatsat::sim {
+
+namespace {
+
+using bus::put;
+
+msg::TruthState toMessage(const Truth& truth, int wheel_count, const bus::StepContext& ctx,
+                          const std::string& source) {
+  msg::TruthState m;
+  m.header(bus::makeHeader(ctx, source));
+  put(m.q_inertial_body(), truth.q_NB);
+  put(m.w_body_rad_s(), truth.w_NB_B_rad_s);
+  m.wheel_count(static_cast<std::uint32_t>(wheel_count));
+  put(m.wheel_speed_rad_s(), truth.wheel_speed_rad_s);
+  put(m.wheel_torque_Nm(), truth.wheel_torque_applied_Nm);
+  put(m.h_wheels_body_Nms(), truth.h_wheels_B_Nms);
+  put(m.h_total_inertial_Nms(), truth.H_total_N_Nms);
+  put(m.r_inertial_m(), truth.r_N_m);
+  put(m.v_inertial_m_s(), truth.v_N_m_s);
+  put(m.b_inertial_T(), truth.b_N_T);
+  put(m.b_body_T(), truth.b_B_T);
+  put(m.sun_inertial_unit(), truth.sun_N_unit);
+  put(m.sun_body_unit(), truth.sun_B_unit);
+  m.illumination(truth.illumination);
+  put(m.dipole_body_Am2(), truth.dipole_applied_B_Am2);
+  put(m.tau_gravity_gradient_body_Nm(), truth.tau_gravity_gradient_B_Nm);
+  put(m.tau_magnetic_body_Nm(), truth.tau_magnetic_B_Nm);
+  put(m.tau_disturbance_body_Nm(), truth.tau_disturbance_B_Nm);
+  return m;
+}
+
+}  // namespace
+
+DynamicsServerNode::DynamicsServerNode(bus::Bus& bus, bus::NodeOptions options,
+                                       const DynamicsServerParams& params)
+    : TimeMaster(bus, std::move(options), {params.step_period_ns, params.final_step}),
+      wheel_count_(params.dynamics.body.wheel_count),
+      model_(params.dynamics) {
+  if (options_.schedule.count(std::string(bus::topics::kWheelTorqueCmd.producer))) {
+    wheel_cmd_ = &addInput(bus::topics::kWheelTorqueCmd);
+  }
+  if (options_.schedule.count(std::string(bus::topics::kDipoleCmd.producer))) {
+    dipole_cmd_ = &addInput(bus::topics::kDipoleCmd);
+  }
+}
+
+void DynamicsServerNode::publishStep(const bus::StepContext& ctx) {
+  truth_.write(toMessage(model_.truth(), wheel_count_, ctx, name()));
+}
+
+void DynamicsServerNode::advance(const bus::StepContext& ctx) {
+  ActuatorCommands cmd;
+  if (wheel_cmd_ != nullptr) {
+    cmd.wheel_torque_Nm = bus::vec4(wheel_cmd_->at(ctx.step).torque_Nm());
+  }
+  if (dipole_cmd_ != nullptr) cmd.dipole_B_Am2 = bus::vec3(dipole_cmd_->at(ctx.step).m_body_Am2());
+  model_.step(cmd, ctx.sim_time_ns + ctx.period_ns);
+}
+
+}  // namespace flatsat::sim

@@ -1,0 +1,25 @@
+// SPDX-License-Identifier: Apache-2.0
+#pragma once
+#include "bus/TimeMaster.hpp"
+#include "sim/DynamicsServerParams.hpp"
+
+namespace flatsat::sim {
+
+/// The dynamics server: time master of the lockstep rig. Publishes the truth
+/// at t_k, then holds the commands stamped k over [t_k, t_k+1).
+class DynamicsServerNode final : public bus::TimeMaster {
+ public:
+  DynamicsServerNode(bus::Bus& bus, bus::NodeOptions options, const DynamicsServerParams& params);
+
+ private:
+  void publishStep(const bus::StepContext& ctx) override;
+  void advance(const bus::StepContext& ctx) override;
+
+  bus::WriterOf<bus::topics::kTruth>& truth_ = addOutput(bus::topics::kTruth);
+  bus::InputOf<bus::topics::kWheelTorqueCmd>* wheel_cmd_ = nullptr;  // if a controller runs
+  bus::InputOf<bus::topics::kDipoleCmd>* dipole_cmd_ = nullptr;      // if torquers are driven
+  int wheel_count_;
+  DynamicsModel model_;
+};
+
+}  // namespace flatsat::sim

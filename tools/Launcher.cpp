@@ -1,0 +1,197 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "tools/Launcher.hpp"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <thread>
+
+#include <spdlog/spdlog.h>
+
+#include "bus/Endpoints.hpp"
+#include "bus/Shutdown.hpp"
+#include "bus/Topics.hpp"
+#include "components/Registry.hpp"
+
+extern char** environ;
+
+namespace flatsat::tools {
+
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+struct Child {
+  std::string name;
+  pid_t pid = -1;
+  bool running = true;
+  std::string log;
+};
+
+pid_t spawn(const std::string& exe, const std::vector<std::string>& args, const std::string& log) {
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(),
+                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
+  std::vector<char*> argv;
+  argv.push_back(const_cast<char*>(exe.c_str()));
+  for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  pid_t pid = -1;
+  const int rc = posix_spawn(&pid, exe.c_str(), &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (rc != 0) throw std::runtime_error("cannot start " + exe + ": " + std::strerror(rc));
+  return pid;
+}
+
+std::string describeExit(int status) {
+  if (WIFEXITED(status)) return "exit code " + std::to_string(WEXITSTATUS(status));
+  if (WIFSIGNALED(status)) return "killed by signal " + std::to_string(WTERMSIG(status));
+  return "stopped";
+}
+
+std::string tail(const std::string& path, std::size_t lines) {
+  std::ifstream in(path);
+  std::vector<std::string> all;
+  for (std::string line; std::getline(in, line);) all.push_back(line);
+  std::string out;
+  for (std::size_t i = all.size() > lines ? all.size() - lines : 0; i < all.size(); ++i) {
+    out += "    " + all[i] + "\n";
+  }
+  return out;
+}
+
+void stopAll(std::vector<Child>& children) {
+  for (auto& c : children) {
+    if (c.running) kill(c.pid, SIGTERM);
+  }
+  const auto deadline = Clock::now() + std::chrono::seconds(5);
+  for (auto& c : children) {
+    while (c.running) {
+      int status = 0;
+      if (waitpid(c.pid, &status, WNOHANG) == c.pid) {
+        c.running = false;
+      } else if (Clock::now() > deadline) {
+        kill(c.pid, SIGKILL);
+        waitpid(c.pid, &status, 0);
+        c.running = false;
+      } else {
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      }
+    }
+  }
+}
+
+/// Follows the grants to show progress and time the stepping.
+class Progress {
+ public:
+  Progress(bus::Bus& bus, bool show)
+      : show_(show), reader_(bus, bus::topics::kStepGrant, [this](const msg::StepGrant& g) {
+          if (g.stop()) return;
+          if (steps_.load() == 0) first_ = Clock::now();
+          last_ = Clock::now();
+          final_step_ = g.final_step();
+          period_ns_ = g.step_period_ns();
+          steps_.store(g.header().step() + 1);
+        }) {}
+
+  void print(bool done) {
+    if (!show_) return;
+    const std::uint64_t steps = steps_.load();
+    if (steps == 0) {
+      std::fprintf(stderr, "\r  waiting for every component to be ready...");
+      return;
+    }
+    const double wall = std::chrono::duration<double>(last_.load() - first_.load()).count();
+    const double sim = static_cast<double>(steps) * static_cast<double>(period_ns_) * 1e-9;
+    const double total = static_cast<double>(final_step_ + 1) * static_cast<double>(period_ns_) * 1e-9;
+    const double rate = wall > 0 ? static_cast<double>(steps) / wall : 0.0;
+    const double eta = rate > 0 ? static_cast<double>(final_step_ + 1 - steps) / rate : 0.0;
+    std::fprintf(stderr, "\r  sim %9.1f / %.1f s  step %llu/%llu  %7.0f steps/s  x%-7.1f eta %5.0f s%s",
+                 sim, total, static_cast<unsigned long long>(steps),
+                 static_cast<unsigned long long>(final_step_ + 1), rate,
+                 wall > 0 ? sim / wall : 0.0, eta, done ? "\n" : "   ");
+  }
+  std::uint64_t steps() const { return steps_.load(); }
+  double stepSeconds() const {
+    return steps_.load() == 0 ? 0.0
+                              : std::chrono::duration<double>(last_.load() - first_.load()).count();
+  }
+
+ private:
+  bool show_;
+  std::atomic<std::uint64_t> steps_{0};
+  std::atomic<Clock::time_point> first_{}, last_{};
+  std::atomic<std::uint64_t> final_step_{0};
+  std::atomic<std::int64_t> period_ns_{0};
+  bus::ReaderOf<bus::topics::kStepGrant> reader_;
+};
+
+}  // namespace
+
+LaunchResult launch(const bus::Scenario& scenario, const LaunchOptions& options) {
+  LaunchResult result;
+  const fs::path logs = fs::path(options.run_dir) / "logs";
+  fs::create_directories(logs);
+  bus::Bus bus({bus::domainFromEnvironment(scenario.domain_id), bus::profileFromEnvironment(),
+                "flatsat-launcher"});
+  Progress progress(bus, options.progress);
+
+  const auto start = Clock::now();
+  std::vector<Child> children;
+  for (const auto& component : scenario.components) {
+    const auto* kind = findComponentKind(component.name);
+    Child child{component.name, -1, true, (logs / (component.name + ".log")).string()};
+    child.pid = spawn((fs::path(options.bin_dir) / kind->executable).string(),
+                      {"--scenario", options.scenario_file, "--name", component.name, "--out",
+                       options.run_dir, "--log", options.log_level},
+                      child.log);
+    spdlog::debug("started {} (pid {})", component.name, child.pid);
+    children.push_back(child);
+  }
+  result.processes = children.size();
+
+  auto next_print = Clock::now();
+  std::size_t running = children.size();
+  while (running > 0) {
+    for (auto& c : children) {
+      int status = 0;
+      if (!c.running || waitpid(c.pid, &status, WNOHANG) != c.pid) continue;
+      c.running = false;
+      --running;
+      if (!(WIFEXITED(status) && WEXITSTATUS(status) == 0) && result.failure.empty()) {
+        result.failure = "component '" + c.name + "' died (" + describeExit(status) +
+                         "); last lines of " + c.log + ":\n" + tail(c.log, 8);
+      }
+    }
+    if (!result.failure.empty() || bus::shutdownRequested()) break;
+    if (Clock::now() >= next_print) {
+      progress.print(false);
+      next_print += std::chrono::milliseconds(500);
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  if (running > 0) {
+    if (result.failure.empty()) result.failure = "interrupted; stopping every component";
+    stopAll(children);
+  }
+  progress.print(true);
+  result.launch_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  result.step_seconds = progress.stepSeconds();
+  result.steps = progress.steps();
+  result.ok = result.failure.empty();
+  return result;
+}
+
+}  // namespace flatsat::tools

@@ -1,0 +1,32 @@
+// SPDX-License-Identifier: Apache-2.0
+#pragma once
+#include <string>
+#include <vector>
+
+#include "bus/Scenario.hpp"
+
+namespace flatsat::tools {
+
+struct LaunchOptions {
+  std::string bin_dir;        ///< where the flatsat-<component> executables are
+  std::string run_dir;        ///< logs go to run_dir/logs/<component>.log
+  std::string scenario_file;  ///< the resolved scenario every process reads
+  std::string log_level = "info";
+  bool progress = true;       ///< live progress line on stderr
+};
+
+struct LaunchResult {
+  bool ok = false;
+  std::string failure;          ///< which component failed and how
+  double launch_seconds = 0.0;  ///< [s] wall time from spawn to the last exit
+  double step_seconds = 0.0;    ///< [s] wall time from the first to the last step
+  std::uint64_t steps = 0;      ///< [-] steps granted
+  std::size_t processes = 0;
+};
+
+/// Starts one process per scenario component, shows progress, and waits
+/// for all of them. When one dies, or on SIGINT/SIGTERM, it stops the
+/// others (SIGTERM, then SIGKILL) and says which.
+LaunchResult launch(const bus::Scenario& scenario, const LaunchOptions& options);
+
+}  // namespace flatsat::tools

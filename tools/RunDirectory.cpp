@@ -1,0 +1,53 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "tools/RunDirectory.hpp"
+
+#include <chrono>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+
+#include <yaml-cpp/yaml.h>
+
+namespace flatsat::tools {
+
+namespace fs = std::filesystem;
+
+std::string writeRunScenario(const std::string& scenario_file, const std::string& run_dir,
+                             const std::vector<std::string>& overrides) {
+  YAML::Node root = YAML::LoadFile(scenario_file);
+  for (const auto& assignment : overrides) {
+    const auto eq = assignment.find('=');
+    if (eq == std::string::npos || eq == 0) {
+      throw std::invalid_argument("--set '" + assignment + "': expected key.path=value");
+    }
+    const std::string path = assignment.substr(0, eq);
+    std::vector<std::string> keys;
+    for (std::size_t start = 0;;) {
+      const auto dot = path.find('.', start);
+      keys.push_back(path.substr(start, dot - start));
+      if (dot == std::string::npos) break;
+      start = dot + 1;
+    }
+    // yaml-cpp nodes are handles: walking with operator[] on copies keeps
+    // writing into the same tree.
+    std::vector<YAML::Node> chain{root};
+    for (std::size_t i = 0; i + 1 < keys.size(); ++i) chain.push_back(chain.back()[keys[i]]);
+    chain.back()[keys.back()] = YAML::Load(assignment.substr(eq + 1));
+  }
+  fs::create_directories(run_dir);
+  const std::string out = (fs::path(run_dir) / "scenario.yaml").string();
+  std::ofstream file(out);
+  file << "# Resolved from " << fs::absolute(scenario_file).string() << "\n" << root << "\n";
+  if (!file) throw std::runtime_error(out + ": cannot write");
+  return out;
+}
+
+std::string defaultRunDirectory(const std::string& scenario_name) {
+  const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  char stamp[32];
+  std::strftime(stamp, sizeof stamp, "%Y%m%dT%H%M%SZ", std::gmtime(&now));
+  return (fs::path("runs") / (scenario_name + "-" + stamp)).string();
+}
+
+}  // namespace flatsat::tools

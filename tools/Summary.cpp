@@ -1,0 +1,107 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "tools/Summary.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "bus/Convert.hpp"
+#include "bus/Recording.hpp"
+#include "bus/Serialization.hpp"
+#include "bus/Topics.hpp"
+#include "components/attitude_controller/AttitudeControllerNode.hpp"
+#include "sim/DynamicsServerParams.hpp"
+
+namespace flatsat::tools {
+
+namespace {
+
+constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
+
+struct MomentumStats {
+  double start = 0.0, max = 0.0, end = 0.0;
+};
+
+}  // namespace
+
+nlohmann::ordered_json summarize(const bus::Scenario& scenario, const std::string& recording_path,
+                                 const LaunchResult& launch) {
+  bus::ConfigProblems ignored;  // the scenario was checked before the run
+  const auto plant = sim::readPlant(scenario, ignored);
+  Eigen::Vector3d axis_B = Eigen::Vector3d::UnitX();
+  if (scenario.hasComponent("attitude_controller")) {
+    axis_B = attitude_controller::readParams(scenario, {scenario.file, "attitude_controller", ""},
+                                             ignored)
+                 .pointing_axis_B.normalized();
+  }
+  double capacity = plant.body.wheel_max_momentum_Nms.head(plant.body.wheel_count).minCoeff();
+
+  const bus::Recording recording(recording_path, bus::Recording::Access::kRead);
+  std::uint64_t steps = 0;
+  double sim_seconds = 0.0, pointing_max = 0.0, pointing_sum = 0.0;
+  std::uint64_t pointing_count = 0;
+  MomentumStats h;
+  using TruthDef = std::remove_cvref_t<decltype(bus::topics::kTruth)>;
+  recording.forEach(std::string(bus::topics::kTruth.name),
+                    [&](std::uint64_t, const std::string&, const std::vector<std::uint8_t>& bytes) {
+                      const auto truth = bus::deserialize<TruthDef>(bytes);
+                      const double t = static_cast<double>(truth.header().sim_time_ns()) * 1e-9;
+                      const double momentum = bus::vec3(truth.h_wheels_body_Nms()).norm();
+                      if (steps == 0) h.start = momentum;
+                      h.max = std::max(h.max, momentum);
+                      h.end = momentum;
+                      sim_seconds = t;
+                      ++steps;
+                      if (t < scenario.acquisition_s) return;
+                      const Eigen::Vector3d axis_N = bus::quat(truth.q_inertial_body()) * axis_B;
+                      const double error = std::atan2(
+                          axis_N.cross(bus::vec3(truth.sun_inertial_unit())).norm(),
+                          axis_N.dot(bus::vec3(truth.sun_inertial_unit())));
+                      pointing_max = std::max(pointing_max, error);
+                      pointing_sum += error;
+                      ++pointing_count;
+                    });
+
+  nlohmann::ordered_json s;
+  s["scenario"] = scenario.name;
+  s["sim_seconds"] = sim_seconds;
+  s["wall_seconds"] = launch.step_seconds;
+  s["launch_seconds"] = launch.launch_seconds;
+  s["speed_factor"] = launch.step_seconds > 0 ? sim_seconds / launch.step_seconds : 0.0;
+  s["steps"] = steps;
+  s["steps_per_second"] = launch.step_seconds > 0 ? static_cast<double>(steps) / launch.step_seconds : 0.0;
+  s["processes"] = launch.processes;
+  s["acquisition_seconds"] = scenario.acquisition_s;
+  s["pointing_error_deg_max"] = pointing_max * kRadToDeg;
+  s["pointing_error_deg_mean"] = pointing_count ? pointing_sum / pointing_count * kRadToDeg : 0.0;
+  s["wheel_capacity_Nms"] = capacity;
+  s["wheel_momentum_Nms_start"] = h.start;
+  s["wheel_momentum_Nms_max"] = h.max;
+  s["wheel_momentum_Nms_end"] = h.end;
+  s["wheel_momentum_fraction_max"] = capacity > 0 ? h.max / capacity : 0.0;
+  s["recording"] = recording_path;
+  s["recording_sha256"] = recording.digest({std::string(bus::topics::kHealth.name)});
+  return s;
+}
+
+std::string summaryTable(const nlohmann::ordered_json& summary) {
+  std::ostringstream out;
+  std::size_t width = 0;
+  for (const auto& [key, value] : summary.items()) width = std::max(width, key.size());
+  for (const auto& [key, value] : summary.items()) {
+    out << "  " << key << std::string(width - key.size() + 2, ' ');
+    if (value.is_number_float()) {
+      char buffer[32];
+      std::snprintf(buffer, sizeof buffer, "%.6g", value.get<double>());
+      out << buffer;
+    } else if (value.is_string()) {
+      out << value.get<std::string>();
+    } else {
+      out << value.dump();
+    }
+    out << '\n';
+  }
+  return out.str();
+}
+
+}  // namespace flatsat::tools
