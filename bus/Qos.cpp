@@ -12,10 +12,6 @@ constexpr int kStateReaderDepth = 64;   // > producers of one state topic
 
 template <class Qos>
 void common(Qos& qos, int depth) {
-  // Data sharing leaves its segments in /dev/shm when a process is killed,
-  // and `fastdds shm clean` (2.9) does not remove them; the shared-memory
-  // transport still carries every sample between processes of one host.
-  qos.data_sharing().off();
   qos.reliability().kind = dds::RELIABLE_RELIABILITY_QOS;
   qos.durability().kind = dds::TRANSIENT_LOCAL_DURABILITY_QOS;
   qos.history().kind = dds::KEEP_LAST_HISTORY_QOS;

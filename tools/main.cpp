@@ -13,6 +13,7 @@
 #include "components/Registry.hpp"
 #include "tools/Launcher.hpp"
 #include "tools/RunDirectory.hpp"
+#include "tools/ShmClean.hpp"
 #include "tools/Summary.hpp"
 
 namespace fs = std::filesystem;
@@ -73,6 +74,8 @@ int run(const RunOptions& o, nlohmann::ordered_json* summary_out = nullptr) {
   const auto result = tools::launch(
       scenario, {bin_dir, run_dir, fs::absolute(scenario.file).string(), o.log_level, !o.quiet});
   if (!result.ok) {
+    // A killed process cannot remove its shared-memory segments.
+    tools::cleanStaleSharedMemory();
     std::cerr << "error: " << result.failure << "\n";
     return kExitFailed;
   }
@@ -148,8 +151,15 @@ int main(int argc, char** argv) {
   bench_cmd->add_option("scenario", bench_scenario, "scenario file (default: the default rig)");
   bench_cmd->add_option("--duration-s", bench_duration_s, "simulated seconds to run");
 
+  auto* clean_cmd = app.add_subcommand(
+      "clean-shm", "remove Fast DDS shared-memory files no live process uses");
+
   CLI11_PARSE(app, argc, argv);
   if (run_cmd->parsed()) return run(run_options);
+  if (clean_cmd->parsed()) {
+    for (const auto& name : tools::cleanStaleSharedMemory()) std::cout << "removed " << name << "\n";
+    return 0;
+  }
   if (bench_cmd->parsed()) return bench(bench_scenario, bench_duration_s);
   bus::Scenario scenario;
   if (!loadChecked(check_file, "", scenario)) return kExitBadInput;

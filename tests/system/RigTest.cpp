@@ -38,6 +38,7 @@ Run runRig(const std::string& out, const std::string& extra) {
   INFO(run.command.output);
   REQUIRE(run.command.exit_code == 0);
   std::ifstream(fs::path(out) / "summary.json") >> run.summary;
+  fs::remove_all(out);  // kept only when the run failed, for its logs
   return run;
 }
 

@@ -1,0 +1,44 @@
+// SPDX-License-Identifier: Apache-2.0
+// The default participant profile keeps DDS on the machine: a packet
+// capture on every interface during a run sees no RTPS datagram that is not
+// loopback-to-loopback, and no multicast at all.
+#include <catch2/catch.hpp>
+
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "tests/support/Run.hpp"
+#include "tests/support/TestDomain.hpp"
+
+namespace fs = std::filesystem;
+using namespace flatsat;
+
+TEST_CASE("no RTPS datagram leaves loopback during a run", "[system][network]") {
+  REQUIRE(::geteuid() == 0);  // packet capture needs root (CI and rig.sh run as root)
+  REQUIRE(test::runCommand("command -v tcpdump").exit_code == 0);
+  test::exportTestDomain();
+  const std::string tag = std::to_string(::getpid());
+  const std::string pcap = (fs::temp_directory_path() / ("flatsat-loopback-" + tag + ".pcap")).string();
+  const std::string out = (fs::temp_directory_path() / ("flatsat-loopback-" + tag)).string();
+  fs::remove_all(out);
+  // RTPS datagrams start with the magic "RTPS" right after the UDP header.
+  const std::string filter =
+      "udp and udp[8:4] = 0x52545053 and not (src net 127.0.0.0/8 and dst net 127.0.0.0/8)";
+  const std::string script = out + ".sh";
+  std::ofstream(script) << "tcpdump -i any -n -p -U -w " << pcap << " '" << filter
+                        << "' 2>/dev/null & dump=$!\nsleep 1\n"
+                        << FLATSAT_BIN_DIR << "/flatsat run " << FLATSAT_SCENARIO_DIR
+                        << "/default.yaml -q --out " << out
+                        << " --set duration_orbits=null --set duration_s=60\nrc=$?\nsleep 1\n"
+                        << "kill -INT $dump; wait $dump\necho rc=$rc\n"
+                        << "echo packets=$(tcpdump -r " << pcap << " -n 2>/dev/null | wc -l)\n";
+  const auto result = test::runCommand("bash " + script);
+  INFO(result.output);
+  CHECK(result.output.find("rc=0") != std::string::npos);
+  CHECK(result.output.find("packets=0") != std::string::npos);
+  fs::remove(pcap);
+  fs::remove(script);
+}
