@@ -48,8 +48,7 @@ void Component::loop() {
     if (grant.stop()) return;
     const StepContext ctx{grant.header().step(), grant.header().sim_time_ns(),
                           grant.step_period_ns()};
-    if (ctx.step % divider == 0) {
-      waitForInputs(ctx.step);
+    if (ctx.step % divider == 0 && waitForInputs(ctx.step)) {
       step(ctx);
       msg::StepDone done;
       done.header(makeHeader(ctx, name()));
@@ -74,6 +73,12 @@ msg::StepGrant Component::nextGrant() {
                         std::to_string(options_.step_timeout.count()) + " ms");
     }
     changed_.wait_for(lock, std::chrono::milliseconds(100));
+  }
+  // Paced, a component that fell behind skips to the newest grant: the
+  // wall clock does not wait, so old steps are not worth computing.
+  while (paced() && grants_.size() > 1 && !grants_.front().stop()) {
+    grants_.pop_front();
+    ++overruns_;
   }
   const msg::StepGrant grant = grants_.front();
   grants_.pop_front();

@@ -50,8 +50,11 @@ void Node::notify() {
   changed_.notify_all();
 }
 
-void Node::waitForInputs(std::uint64_t k) {
-  const auto deadline = std::chrono::steady_clock::now() + options_.step_timeout;
+bool Node::waitForInputs(std::uint64_t k) {
+  const auto now = std::chrono::steady_clock::now();
+  const auto deadline = now + (paced() ? std::chrono::duration_cast<std::chrono::milliseconds>(
+                                              options_.period / 2)
+                                       : options_.step_timeout);
   std::unique_lock lock(mutex_);
   for (;;) {
     const InputBase* missing = nullptr;
@@ -61,16 +64,23 @@ void Node::waitForInputs(std::uint64_t k) {
         break;
       }
     }
-    if (missing == nullptr) return;
-    if (shutdownRequested()) {
+    if (missing == nullptr) return true;
+    if (interrupted()) {
       throw NodeFailure(options_.name + ": interrupted at step " + std::to_string(k));
     }
     if (std::chrono::steady_clock::now() > deadline) {
-      throw NodeFailure(options_.name + ": step " + std::to_string(k) + ": no sample on " +
-                        missing->topicName() + " within " +
-                        std::to_string(options_.step_timeout.count()) + " ms");
+      if (!paced()) {
+        throw NodeFailure(options_.name + ": step " + std::to_string(k) + ": no sample on " +
+                          missing->topicName() + " within " +
+                          std::to_string(options_.step_timeout.count()) + " ms");
+      }
+      ++stale_inputs_;
+      for (const auto& input : inputs_) {
+        if (!input->hasAny(k)) return false;
+      }
+      return true;
     }
-    changed_.wait_for(lock, kPoll);
+    changed_.wait_until(lock, std::min(deadline, std::chrono::steady_clock::now() + kPoll));
   }
 }
 
@@ -91,6 +101,8 @@ void Node::publishHealth(msg::ComponentState state, std::uint64_t steps_done,
   health.header().step(steps_done);
   health.state(state);
   health.steps_done(steps_done);
+  health.stale_inputs(stale_inputs_);
+  health.overruns(overruns_);
   health.wall_time_ns(static_cast<std::uint64_t>(
       std::chrono::duration_cast<std::chrono::nanoseconds>(
           std::chrono::system_clock::now().time_since_epoch())

@@ -2,12 +2,14 @@
 #pragma once
 #include <chrono>
 #include <condition_variable>
+#include <functional>
 #include <cstdint>
 #include <map>
 #include <memory>
 #include <mutex>
 #include <stdexcept>
 #include <string>
+#include <iterator>
 #include <vector>
 
 #include "bus/Bus.hpp"
@@ -21,10 +23,18 @@ namespace flatsat::bus {
 /// component due at k when k % divider == 0.
 using Schedule = std::map<std::string, std::uint32_t>;
 
+/// How simulated time advances (architecture, "Time and the step protocol").
+enum class Pacing {
+  kLockstep,  ///< every step waits for every due component: deterministic
+  kPaced,     ///< steps follow the wall clock; nobody is waited for
+};
+
 /// What every node needs to know about its place in the rig.
 struct NodeOptions {
   std::string name;                 ///< component name, unique in the rig
   Schedule schedule;                ///< every scheduled component's divider
+  Pacing pacing = Pacing::kLockstep;
+  std::chrono::nanoseconds period{100'000'000};   ///< [ns] base step period (paced waits)
   std::chrono::milliseconds peer_timeout{60000};  ///< [ms] for discovery
   std::chrono::milliseconds step_timeout{60000};  ///< [ms] for one step's data
 };
@@ -43,7 +53,10 @@ class Node;
 class InputBase {
  public:
   virtual ~InputBase() = default;
+  /// Holds the sample due at step k (stamped k - k mod producer divider).
   virtual bool has(std::uint64_t k) const = 0;
+  /// Holds some sample stamped at or before step k.
+  virtual bool hasAny(std::uint64_t k) const = 0;
   virtual void dropBefore(std::uint64_t k) = 0;
   virtual int matchedWriters() const = 0;
   virtual const std::string& topicName() const = 0;
@@ -54,12 +67,17 @@ class Input final : public InputBase {
  public:
   using Sample = typename Def::Type;
 
-  Input(Node& node, const Def& def, std::uint32_t producer_divider);
+  /// Observes every sample as it arrives (on a Fast DDS thread).
+  using Observer = std::function<void(const Sample&)>;
 
-  /// The producer's latest sample due at or before step k: stamped
-  /// k - k mod (producer divider); the node waited for it.
+  Input(Node& node, const Def& def, std::uint32_t producer_divider, Observer observer = {});
+
+  /// The producer's newest sample due at or before step k. In lockstep the
+  /// node waited for the one stamped k - k mod (producer divider); paced, it
+  /// may be older (stale). Throws NodeFailure when there is none.
   Sample at(std::uint64_t k) const;
   bool has(std::uint64_t k) const override;
+  bool hasAny(std::uint64_t k) const override;
   void dropBefore(std::uint64_t k) override;
   int matchedWriters() const override { return reader_.matchedWriters(); }
   const std::string& topicName() const override { return reader_.topicName(); }
@@ -68,6 +86,7 @@ class Input final : public InputBase {
   std::uint64_t stampFor(std::uint64_t k) const { return k - k % divider_; }
   Node& node_;
   std::uint32_t divider_;
+  Observer observer_;
   mutable std::mutex mutex_;
   std::map<std::uint64_t, Sample> samples_;
   Reader<Def> reader_;
@@ -85,8 +104,9 @@ class Node {
 
  protected:
   template <class Def>
-  Input<Def>& addInput(const Def& def) {
-    auto input = std::make_unique<Input<Def>>(*this, def, dividerOf(std::string(def.producer)));
+  Input<Def>& addInput(const Def& def, typename Input<Def>::Observer observer = {}) {
+    auto input = std::make_unique<Input<Def>>(*this, def, dividerOf(std::string(def.producer)),
+                                              std::move(observer));
     auto& ref = *input;
     inputs_.push_back(std::move(input));
     return ref;
@@ -106,8 +126,10 @@ class Node {
   /// string; on timeout or shutdown throws NodeFailure with `what` and it.
   template <class Missing>
   void waitUntilNothingMissing(Missing&& missing, const std::string& what);
-  /// Waits until every input holds its sample for step k.
-  void waitForInputs(std::uint64_t k);
+  /// Lockstep: waits until every input holds its sample for step k.
+  /// Paced: waits at most half a period, then goes on with the newest
+  /// samples; returns false when an input has none at all yet.
+  bool waitForInputs(std::uint64_t k);
   void dropInputsBefore(std::uint64_t k);
   /// Waits until every output's readers acknowledged all samples.
   void flushOutputs();
@@ -119,8 +141,14 @@ class Node {
   /// Wakes the node's waits: call after changing what they look at.
   void notify();
 
+  bool paced() const { return options_.pacing == Pacing::kPaced; }
+
   Bus& bus_;
   NodeOptions options_;
+  /// Paced: steps that went on with an input not fresh (a deadline miss).
+  std::uint64_t stale_inputs_ = 0;
+  /// Paced: grants skipped because the node fell behind the wall clock.
+  std::uint64_t overruns_ = 0;
   /// Guards the node's own bookkeeping (grants, done sets, states) and the
   /// waits; never held while computing or publishing.
   std::mutex mutex_;
@@ -164,10 +192,12 @@ void Node::waitUntilNothingMissing(Missing&& missing, const std::string& what) {
 }
 
 template <class Def>
-Input<Def>::Input(Node& node, const Def& def, std::uint32_t producer_divider)
+Input<Def>::Input(Node& node, const Def& def, std::uint32_t producer_divider, Observer observer)
     : node_(node),
       divider_(producer_divider),
+      observer_(std::move(observer)),
       reader_(node.bus_, def, [this](const Sample& sample) {
+        if (observer_) observer_(sample);
         {
           std::lock_guard lock(mutex_);
           samples_.insert_or_assign(sample.header().step(), sample);
@@ -178,13 +208,23 @@ Input<Def>::Input(Node& node, const Def& def, std::uint32_t producer_divider)
 template <class Def>
 typename Input<Def>::Sample Input<Def>::at(std::uint64_t k) const {
   std::lock_guard lock(mutex_);
-  return samples_.at(stampFor(k));
+  auto it = samples_.upper_bound(stampFor(k));
+  if (it == samples_.begin()) {
+    throw NodeFailure("no sample on " + topicName() + " at or before step " + std::to_string(k));
+  }
+  return std::prev(it)->second;
 }
 
 template <class Def>
 bool Input<Def>::has(std::uint64_t k) const {
   std::lock_guard lock(mutex_);
   return samples_.count(stampFor(k)) != 0;
+}
+
+template <class Def>
+bool Input<Def>::hasAny(std::uint64_t k) const {
+  std::lock_guard lock(mutex_);
+  return !samples_.empty() && samples_.begin()->first <= stampFor(k);
 }
 
 template <class Def>

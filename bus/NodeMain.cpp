@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "bus/NodeMain.hpp"
 
+#include <cmath>
+
 #include <CLI/CLI.hpp>
 #include <spdlog/sinks/stdout_color_sinks.h>
 
@@ -31,6 +33,8 @@ NodeOptions nodeOptions(const Scenario& scenario, const std::string& name) {
   NodeOptions options;
   options.name = name;
   options.schedule = scenario.schedule();
+  options.pacing = scenario.pacing;
+  options.period = std::chrono::nanoseconds(std::llround(scenario.step_s * 1e9));
   return options;
 }
 

@@ -112,6 +112,20 @@ ParamReader ParamReader::section(const std::string& key) {
   return ParamReader(lookup(key), file_, keyPath(key), problems_);
 }
 
+std::vector<ParamReader> ParamReader::list(const std::string& key) {
+  std::vector<ParamReader> entries;
+  const YAML::Node node = lookup(key);
+  if (!node.IsDefined() || node.IsNull()) return entries;
+  if (!node.IsSequence()) {
+    problem(key, "expected a list");
+    return entries;
+  }
+  for (std::size_t i = 0; i < node.size(); ++i) {
+    entries.emplace_back(node[i], file_, keyPath(key) + "[" + std::to_string(i) + "]", problems_);
+  }
+  return entries;
+}
+
 void ParamReader::finish() {
   if (!node_.IsMap()) return;
   for (const auto& entry : node_) {

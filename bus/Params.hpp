@@ -36,6 +36,8 @@ class ParamReader {
   bool has(const std::string& key) const;
   /// A nested mapping (empty when absent).
   ParamReader section(const std::string& key);
+  /// One reader per entry of a list of mappings (none when absent).
+  std::vector<ParamReader> list(const std::string& key);
   /// Reports keys present in the mapping that no read() or section() asked for.
   void finish();
   /// Reports a problem at `key` (or at the mapping itself when key is empty).

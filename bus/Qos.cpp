@@ -22,13 +22,13 @@ void common(Qos& qos, int depth) {
 
 dds::DataWriterQos writerQos(QosKind kind) {
   dds::DataWriterQos qos;
-  common(qos, kind == QosKind::kStepped ? kSteppedDepth : 1);
+  common(qos, kind == QosKind::kState ? 1 : kSteppedDepth);
   return qos;
 }
 
 dds::DataReaderQos readerQos(QosKind kind) {
   dds::DataReaderQos qos;
-  common(qos, kind == QosKind::kStepped ? kSteppedDepth : kStateReaderDepth);
+  common(qos, kind == QosKind::kState ? kStateReaderDepth : kSteppedDepth);
   return qos;
 }
 

@@ -16,6 +16,10 @@ enum class QosKind {
   /// Latest state of each producer (health): reliable, transient-local,
   /// the writer keeps its last sample, readers keep one per producer.
   kState,
+  /// Commands and events (faults, later modes and parameters): reliable,
+  /// transient-local so a late joiner (recorder, tool) sees recent ones,
+  /// keep-last 64 on both sides.
+  kCommand,
 };
 
 eprosima::fastdds::dds::DataWriterQos writerQos(QosKind kind);

@@ -58,7 +58,11 @@ Scenario loadScenario(const std::string& path) {
   top.read("description", description);
   std::string mode = "lockstep";
   top.read("mode", mode);
-  if (mode != "lockstep") top.problem("mode", "'" + mode + "' is not a run mode (lockstep)");
+  if (mode == "paced") {
+    scenario.pacing = Pacing::kPaced;
+  } else if (mode != "lockstep") {
+    top.problem("mode", "'" + mode + "' is not a run mode (lockstep, paced)");
+  }
   top.read("domain_id", scenario.domain_id);
   if (scenario.domain_id > 232) top.problem("domain_id", "must be in 0..232");
   top.read("seed", scenario.seed);

@@ -15,8 +15,6 @@ struct ScenarioError : std::runtime_error {
   explicit ScenarioError(const std::string& what) : std::runtime_error(what) {}
 };
 
-enum class RunMode { kLockstep };
-
 /// One process of the rig as the scenario lists it.
 struct ComponentEntry {
   std::string name;               ///< component name (= its kind for now)
@@ -29,7 +27,7 @@ struct Scenario {
   std::string file;
   YAML::Node root;
   std::string name;
-  RunMode mode = RunMode::kLockstep;
+  Pacing pacing = Pacing::kLockstep;  ///< mode: lockstep | paced
   std::uint32_t domain_id = 0;     ///< [-] 0..232; FLATSAT_DOMAIN overrides
   std::uint64_t seed = 1;          ///< [-] base seed; each component derives its own
   double step_s = 0.1;             ///< [s] base period, 1e-3..10

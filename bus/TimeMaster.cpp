@@ -86,12 +86,24 @@ void TimeMaster::waitForDone(std::uint64_t k) {
   }
 }
 
+void TimeMaster::waitForTick(std::chrono::steady_clock::time_point tick) {
+  std::unique_lock lock(mutex_);
+  while (std::chrono::steady_clock::now() < tick) {
+    if (interrupted()) throw NodeFailure(name() + ": interrupted");
+    changed_.wait_until(lock, tick);
+  }
+  // Paced steps wait for nobody; who was late shows in their health.
+  done_.clear();
+}
+
 void TimeMaster::run() {
   try {
     waitForProducers();
     waitForComponents();
     publishHealth(msg::ComponentState::RUNNING, 0, "granting steps");
-    spdlog::info("{}: every component ready; running steps 0..{}", name(), timing_.final_step);
+    spdlog::info("{}: every component ready; running steps 0..{} {}", name(), timing_.final_step,
+                 paced() ? "paced on the wall clock" : "in lockstep");
+    const auto start = std::chrono::steady_clock::now();
     for (std::uint64_t k = 0; k <= timing_.final_step; ++k) {
       const StepContext ctx{k, static_cast<std::int64_t>(k) * timing_.period_ns,
                             timing_.period_ns};
@@ -101,8 +113,12 @@ void TimeMaster::run() {
       grant.step_period_ns(timing_.period_ns);
       grant.final_step(timing_.final_step);
       grant_.write(grant);
-      waitForDone(k);
-      waitForInputs(k);
+      if (paced()) {
+        waitForTick(start + std::chrono::nanoseconds(timing_.period_ns) * (k + 1));
+      } else {
+        waitForDone(k);
+        waitForInputs(k);
+      }
       advance(ctx);
       dropInputsBefore(k);
     }

@@ -7,10 +7,12 @@
 
 namespace flatsat::bus {
 
-/// The server side of the lockstep protocol: owns simulated time. It starts
+/// The server side of the step protocol: owns simulated time. It starts
 /// once every scheduled component reported READY; at each step k it
-/// publishes the step's data and the grant, waits for StepDone(k) from every
-/// component due at k and for its own inputs stamped k, then advances.
+/// publishes the step's data and the grant; in lockstep it then waits for
+/// StepDone(k) from every component due at k and for its own inputs stamped
+/// k, paced it waits for the wall-clock tick and takes the newest inputs;
+/// then it advances.
 class TimeMaster : public Node {
  public:
   struct Timing {
@@ -27,12 +29,14 @@ class TimeMaster : public Node {
  protected:
   /// Publishes what the time master produces for step k (before the grant).
   virtual void publishStep(const StepContext& ctx) = 0;
-  /// Applies the inputs stamped k over [t_k, t_k+1).
+  /// Applies the inputs for step k over [t_k, t_k+1): stamped k in
+  /// lockstep, the newest received when paced (check Input::hasAny).
   virtual void advance(const StepContext& ctx) = 0;
 
  private:
   void waitForComponents();
   void waitForDone(std::uint64_t k);
+  void waitForTick(std::chrono::steady_clock::time_point tick);
   std::string failedComponents() const;
 
   Timing timing_;

@@ -8,6 +8,7 @@
 #include "bus/Qos.hpp"
 #include "msg/ActuationPubSubTypes.h"
 #include "msg/EstimationPubSubTypes.h"
+#include "msg/FaultsPubSubTypes.h"
 #include "msg/HealthPubSubTypes.h"
 #include "msg/SensorsPubSubTypes.h"
 #include "msg/StepPubSubTypes.h"
@@ -49,6 +50,10 @@ inline constexpr TopicDef<DipoleCmd, DipoleCmdPubSubType> kDipoleCmd{
     "flatsat/dipole_cmd", QosKind::kStepped, "unloading_controller"};
 inline constexpr TopicDef<Health, HealthPubSubType> kHealth{
     "flatsat/health", QosKind::kState, ""};
+inline constexpr TopicDef<FaultCmd, FaultCmdPubSubType> kFaultCmd{
+    "flatsat/fault_cmd", QosKind::kCommand, ""};
+inline constexpr TopicDef<FaultEvent, FaultEventPubSubType> kFaultEvent{
+    "flatsat/fault_event", QosKind::kCommand, ""};
 }  // namespace topics
 
 /// Calls f(def) for every topic of the registry (recorder, tools).
@@ -57,6 +62,7 @@ void forEachTopic(F&& f) {
   using namespace topics;
   f(kStepGrant); f(kStepDone); f(kTruth); f(kMagnetometer); f(kSunSensor); f(kGyro);
   f(kWheelTach); f(kAttitudeEstimate); f(kWheelTorqueCmd); f(kDipoleCmd); f(kHealth);
+  f(kFaultCmd); f(kFaultEvent);
 }
 
 }  // namespace flatsat::bus

@@ -16,6 +16,7 @@ packages=(
   libeigen3-dev catch2 libspdlog-dev libyaml-cpp-dev libcli11-dev nlohmann-json3-dev
   libsqlite3-dev sqlite3 libssl-dev
   iproute2 tcpdump procps
+  python3 gnuplot-nox
 )
 
 deps() {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "sim/Constants.hpp"
 #include "sim/Disturbances.hpp"
 #include "sim/SunEphemeris.hpp"
 
@@ -29,44 +30,82 @@ DynamicsModel::DynamicsModel(const DynamicsParams& params)
       orbit_(params.orbit),
       body_(params.body),
       field_(params.field),
+      thrusters_(params.thrusters),
       jd_epoch_(julianDate(params.epoch)) {
+  if (params.flaps.fitted) flaps_.emplace(params.flaps);
   reset();
 }
 
 void DynamicsModel::reset() {
   t_ = 0;
   state_ = body_.makeState(params_.q0_NB, params_.w0_NB_B_rad_s, params_.wheel_speed0_rad_s);
-  updateTruth(Eigen::Vector4d::Zero(), Eigen::Vector3d::Zero());
+  setFlaps(Eigen::Vector4d::Zero());
+  updateTruth(Applied{}, 0.0);
 }
 
 void DynamicsModel::step(const ActuatorCommands& cmd, SimTime t_next) {
   if (t_next <= t_) return;
-  const Eigen::Vector4d wheel_torque = body_.limitMotorTorque(state_, cmd.wheel_torque_Nm);
-  const Eigen::Vector3d dipole = clipDipole(cmd.dipole_B_Am2);
   const double t0_s = toSeconds(t_);
+  const double dt_s = toSeconds(t_next) - t0_s;
+  Applied applied;
+  applied.wheel_torque_Nm = body_.limitMotorTorque(state_, cmd.wheel_torque_Nm);
+  applied.dipole_B_Am2 = clipDipole(cmd.dipole_B_Am2);
+  applied.thrusters = thrusters_.fire(cmd.thruster_on_time_s, cmd.thruster_gimbal_rad, dt_s);
+  if (flaps_) applied.flap_angle_rad = flaps_->limitAngles(cmd.flap_angle_rad);
+  setFlaps(applied.flap_angle_rad);
   const auto external_torque = [&](double t_s, const RigidBodyState& x) -> Eigen::Vector3d {
-    const Torques torques = torquesAt(environmentAt(t_s), x.q_NB, dipole);
-    return torques.gravity_gradient_B_Nm + torques.magnetic_B_Nm + params_.disturbance_torque_B_Nm;
+    return torquesAt(environmentAt(t_s), x.q_NB, applied.dipole_B_Am2).total_B_Nm() +
+           params_.disturbance_torque_B_Nm + applied.thrusters.torque_B_Nm;
   };
-  state_ = body_.propagate(state_, t0_s, toSeconds(t_next) - t0_s, params_.substeps, wheel_torque, external_torque);
+  state_ = body_.propagate(state_, t0_s, dt_s, params_.substeps, applied.wheel_torque_Nm, external_torque);
   t_ = t_next;
-  updateTruth(wheel_torque, dipole);
+  updateTruth(applied, dt_s / params_.substeps);
+}
+
+void DynamicsModel::setFlaps(const Eigen::Vector4d& flap_angle_rad) {
+  if (flaps_) flap_panels_ = flaps_->panels(flap_angle_rad);
 }
 
 DynamicsModel::Environment DynamicsModel::environmentAt(double t_s) const {
   const KeplerOrbit::State orbit = orbit_.at(t_s);
   const Eigen::Matrix3d R_EN_now = R_EN(jd_epoch_ + t_s / kSecondsPerDay);
-  return Environment{orbit, R_EN_now.transpose() * field_.b_E_T(R_EN_now * orbit.r_N_m)};
+  const Eigen::Vector3d r_sun_N_m = sunPosition_N_m(jd_epoch_ + (t_s + kTtMinusUtc_s) / kSecondsPerDay);
+  const double lit = illumination(orbit.r_N_m, r_sun_N_m);
+  // The atmosphere turns with the Earth about the N z axis (equator of date ≈ ECI).
+  const Eigen::Vector3d air_velocity_N = kEarthRotationRate_rad_s * Eigen::Vector3d::UnitZ().cross(orbit.r_N_m);
+  return Environment{orbit,
+                     R_EN_now.transpose() * field_.b_E_T(R_EN_now * orbit.r_N_m),
+                     air_velocity_N - orbit.v_N_m_s,
+                     r_sun_N_m,
+                     lit,
+                     solarFlux_W_m2((r_sun_N_m - orbit.r_N_m).norm(), lit)};
+}
+
+Eigen::Vector3d DynamicsModel::Torques::total_B_Nm() const {
+  return gravity_gradient_B_Nm + magnetic_B_Nm + residual_magnetic_B_Nm + aerodynamic.torque_B_Nm +
+         solar_pressure.torque_B_Nm;
 }
 
 DynamicsModel::Torques DynamicsModel::torquesAt(const Environment& env, const Eigen::Quaterniond& q_NB,
                                                 const Eigen::Vector3d& dipole_B_Am2) const {
   const Eigen::Quaterniond q_BN = q_NB.conjugate();
-  const Eigen::Vector3d b_B_T = q_BN * env.b_N_T;
-  const Eigen::Vector3d tau_gg = params_.gravity_gradient
-                                     ? gravityGradientTorque_B_Nm(q_BN * env.orbit.r_N_m, params_.body.J_B_kg_m2)
-                                     : Eigen::Vector3d::Zero();
-  return Torques{tau_gg, dipole_B_Am2.cross(b_B_T), b_B_T};
+  Torques torques;
+  torques.b_B_T = q_BN * env.b_N_T;
+  torques.wind_B_m_s = q_BN * env.wind_N_m_s;
+  torques.sun_B_unit = q_BN * (env.r_sun_N_m - env.orbit.r_N_m).normalized();
+  torques.gravity_gradient_B_Nm = params_.gravity_gradient
+                                      ? gravityGradientTorque_B_Nm(q_BN * env.orbit.r_N_m, params_.body.J_B_kg_m2)
+                                      : Eigen::Vector3d::Zero();
+  torques.magnetic_B_Nm = dipole_B_Am2.cross(torques.b_B_T);
+  torques.residual_magnetic_B_Nm = params_.residual_dipole_B_Am2.cross(torques.b_B_T);
+  torques.aerodynamic = aerodynamicForceTorque(params_.panels, params_.density_kg_m3, torques.wind_B_m_s);
+  torques.solar_pressure = solarPressureForceTorque(params_.panels, torques.sun_B_unit, env.solar_flux_W_m2);
+  if (flaps_) {
+    torques.flaps_aerodynamic = aerodynamicForceTorque(flap_panels_, params_.density_kg_m3, torques.wind_B_m_s);
+    torques.aerodynamic += torques.flaps_aerodynamic;
+    torques.solar_pressure += solarPressureForceTorque(flap_panels_, torques.sun_B_unit, env.solar_flux_W_m2);
+  }
+  return torques;
 }
 
 Eigen::Vector3d DynamicsModel::clipDipole(const Eigen::Vector3d& dipole_B_Am2) const {
@@ -78,32 +117,43 @@ Eigen::Vector3d DynamicsModel::clipDipole(const Eigen::Vector3d& dipole_B_Am2) c
   return clipped;
 }
 
-void DynamicsModel::updateTruth(const Eigen::Vector4d& wheel_torque_Nm, const Eigen::Vector3d& dipole_B_Am2) {
-  const double t_s = toSeconds(t_);
-  const Environment env = environmentAt(t_s);
-  const Torques torques = torquesAt(env, state_.q_NB, dipole_B_Am2);
-  const Eigen::Vector3d r_sun_N_m = sunPosition_N_m(jd_epoch_ + (t_s + kTtMinusUtc_s) / kSecondsPerDay);
-  const Eigen::Quaterniond q_BN = state_.q_NB.conjugate();
+void DynamicsModel::updateTruth(const Applied& applied, double substep_s) {
+  const Environment env = environmentAt(toSeconds(t_));
+  const Torques torques = torquesAt(env, state_.q_NB, applied.dipole_B_Am2);
 
   Truth& truth = truth_;
   truth.t = t_;
   truth.q_NB = state_.q_NB;
   truth.w_NB_B_rad_s = state_.w_NB_B;
   truth.wheel_speed_rad_s = body_.wheelSpeeds_rad_s(state_);
-  truth.wheel_torque_applied_Nm = wheel_torque_Nm;
+  truth.wheel_torque_applied_Nm = applied.wheel_torque_Nm;
   truth.h_wheels_B_Nms = body_.wheelMomentum_B_Nms(state_);
   truth.H_total_N_Nms = body_.totalMomentum_N_Nms(state_);
   truth.r_N_m = env.orbit.r_N_m;
   truth.v_N_m_s = env.orbit.v_N_m_s;
   truth.b_N_T = env.b_N_T;
   truth.b_B_T = torques.b_B_T;
-  truth.sun_N_unit = (r_sun_N_m - env.orbit.r_N_m).normalized();
-  truth.sun_B_unit = q_BN * truth.sun_N_unit;
-  truth.illumination = illumination(env.orbit.r_N_m, r_sun_N_m);
-  truth.dipole_applied_B_Am2 = dipole_B_Am2;
+  truth.sun_N_unit = (env.r_sun_N_m - env.orbit.r_N_m).normalized();
+  truth.sun_B_unit = torques.sun_B_unit;
+  truth.illumination = env.illumination;
+  truth.dipole_applied_B_Am2 = applied.dipole_B_Am2;
   truth.tau_gravity_gradient_B_Nm = torques.gravity_gradient_B_Nm;
   truth.tau_magnetic_B_Nm = torques.magnetic_B_Nm;
   truth.tau_disturbance_B_Nm = params_.disturbance_torque_B_Nm;
+  truth.tau_residual_magnetic_B_Nm = torques.residual_magnetic_B_Nm;
+  truth.wheel_friction_torque_Nm = body_.frictionTorque_Nm(state_, substep_s);
+  truth.wind_B_m_s = torques.wind_B_m_s;
+  truth.solar_flux_W_m2 = env.solar_flux_W_m2;
+  truth.f_aerodynamic_B_N = torques.aerodynamic.force_B_N;
+  truth.tau_aerodynamic_B_Nm = torques.aerodynamic.torque_B_Nm;
+  truth.tau_flaps_B_Nm = torques.flaps_aerodynamic.torque_B_Nm;
+  truth.f_solar_pressure_B_N = torques.solar_pressure.force_B_N;
+  truth.tau_solar_pressure_B_Nm = torques.solar_pressure.torque_B_Nm;
+  truth.flap_angle_applied_rad = applied.flap_angle_rad;
+  truth.f_thruster_B_N = applied.thrusters.force_B_N;
+  truth.tau_thruster_B_Nm = applied.thrusters.torque_B_Nm;
+  truth.thruster_impulse_Ns = applied.thrusters.impulse_Ns;
+  truth.thruster_gimbal_applied_rad = applied.thrusters.gimbal_rad;
 }
 
 }  // namespace flatsat::sim

@@ -29,6 +29,21 @@ std::vector<std::string> DynamicsParams::validate() const {
   if (!torquer_max_dipole_Am2.allFinite() || (torquer_max_dipole_Am2.array() < 0.0).any()) {
     errors.push_back("torquer_max_dipole_Am2: every coil limit must be finite and ≥ 0");
   }
+  if (!residual_dipole_B_Am2.allFinite()) errors.push_back("residual_dipole_B_Am2: must be finite");
+  for (std::size_t i = 0; i < panels.size(); ++i) {
+    appendNested("panels[" + std::to_string(i) + "]", panels[i].validate(), errors);
+  }
+  if (thrusters.size() > static_cast<std::size_t>(kMaxThrusters)) {
+    errors.push_back("thrusters: " + std::to_string(thrusters.size()) + " thrusters, at most " +
+                     std::to_string(kMaxThrusters));
+  }
+  for (std::size_t i = 0; i < thrusters.size(); ++i) {
+    appendNested("thrusters[" + std::to_string(i) + "]", thrusters[i].validate(), errors);
+  }
+  appendNested("flaps", flaps.validate(), errors);
+  if (!(density_kg_m3 >= 0.0) || !std::isfinite(density_kg_m3)) {
+    errors.push_back("density_kg_m3: " + formatNumber(density_kg_m3) + " must be finite and ≥ 0");
+  }
   if (!disturbance_torque_B_Nm.allFinite()) errors.push_back("disturbance_torque_B_Nm: must be finite");
   if (substeps < 1) errors.push_back("substeps: " + std::to_string(substeps) + " must be ≥ 1");
   if (!q0_NB.coeffs().allFinite() || std::abs(q0_NB.norm() - 1.0) > kUnitNormTolerance) {

@@ -50,15 +50,25 @@ DynamicsServerNode::DynamicsServerNode(bus::Bus& bus, bus::NodeOptions options,
 }
 
 void DynamicsServerNode::publishStep(const bus::StepContext& ctx) {
-  truth_.write(toMessage(model_.truth(), wheel_count_, ctx, name()));
+  auto truth = toMessage(model_.truth(), wheel_count_, ctx, name());
+  truth.wheel_cmd_age_steps(wheel_cmd_age_steps_);
+  truth.dipole_cmd_age_steps(dipole_cmd_age_steps_);
+  truth_.write(truth);
 }
 
 void DynamicsServerNode::advance(const bus::StepContext& ctx) {
   ActuatorCommands cmd;
-  if (wheel_cmd_ != nullptr) {
-    cmd.wheel_torque_Nm = bus::vec4(wheel_cmd_->at(ctx.step).torque_Nm());
+  wheel_cmd_age_steps_ = dipole_cmd_age_steps_ = kNoCommand;
+  if (wheel_cmd_ != nullptr && wheel_cmd_->hasAny(ctx.step)) {
+    const auto wheels = wheel_cmd_->at(ctx.step);
+    cmd.wheel_torque_Nm = bus::vec4(wheels.torque_Nm());
+    wheel_cmd_age_steps_ = static_cast<std::int64_t>(ctx.step - wheels.header().step());
   }
-  if (dipole_cmd_ != nullptr) cmd.dipole_B_Am2 = bus::vec3(dipole_cmd_->at(ctx.step).m_body_Am2());
+  if (dipole_cmd_ != nullptr && dipole_cmd_->hasAny(ctx.step)) {
+    const auto dipole = dipole_cmd_->at(ctx.step);
+    cmd.dipole_B_Am2 = bus::vec3(dipole.m_body_Am2());
+    dipole_cmd_age_steps_ = static_cast<std::int64_t>(ctx.step - dipole.header().step());
+  }
   model_.step(cmd, ctx.sim_time_ns + ctx.period_ns);
 }
 

@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <string>
 
 #include "sim/Constants.hpp"
 #include "sim/SunEphemeris.hpp"
@@ -49,22 +50,84 @@ void readOrbit(bus::ParamReader orbit, DynamicsParams& p) {
   orbit.finish();
 }
 
+/// Optical and accommodation fractions, shared by panels and flaps.
+template <class Surface>
+void readSurface(bus::ParamReader& reader, Surface& surface) {
+  reader.read("specular", surface.specular, "-");
+  reader.read("diffuse", surface.diffuse, "-");
+  reader.read("absorbed", surface.absorbed, "-");
+  reader.read("aero_specular", surface.aero_specular, "-");
+}
+
+/// spacecraft.panels: a list of mappings, one per panel.
+void readPanels(bus::ParamReader& spacecraft, DynamicsParams& p) {
+  for (auto& reader : spacecraft.list("panels")) {
+    Panel panel;
+    reader.read("area_m2", panel.area_m2, "m^2");
+    reader.read("normal_body", panel.normal_B, "-");
+    reader.read("cp_body_m", panel.r_cp_B_m, "m");
+    readSurface(reader, panel);
+    reader.problems(panel.validate());
+    reader.finish();
+    p.panels.push_back(panel);
+  }
+}
+
+/// spacecraft.thrusters: a list of mappings; a `gimbal` mapping makes the
+/// thruster gimballed.
+void readThrusters(bus::ParamReader& spacecraft, DynamicsParams& p) {
+  for (auto& reader : spacecraft.list("thrusters")) {
+    ThrusterParams thruster;
+    reader.read("position_body_m", thruster.r_B_m, "m");
+    reader.read("direction_body", thruster.direction_B, "-");
+    reader.read("thrust_N", thruster.thrust_N, "N");
+    reader.read("min_impulse_bit_Ns", thruster.min_impulse_bit_Ns, "N s");
+    reader.read("failed", thruster.failed);
+    thruster.gimballed = reader.has("gimbal");
+    auto gimbal = reader.section("gimbal");
+    gimbal.read("axis_1_body", thruster.gimbal_axis1_B, "-");
+    gimbal.read("min_1_rad", thruster.gimbal_min_rad[0], "rad");
+    gimbal.read("max_1_rad", thruster.gimbal_max_rad[0], "rad");
+    gimbal.read("axis_2_body", thruster.gimbal_axis2_B, "-");
+    gimbal.read("min_2_rad", thruster.gimbal_min_rad[1], "rad");
+    gimbal.read("max_2_rad", thruster.gimbal_max_rad[1], "rad");
+    gimbal.finish();
+    reader.problems(thruster.validate());
+    reader.finish();
+    p.thrusters.push_back(thruster);
+  }
+}
+
 void readSpacecraft(bus::ParamReader spacecraft, DynamicsParams& p) {
   spacecraft.read("inertia_kg_m2", p.body.J_B_kg_m2, "kg m^2");
+  spacecraft.read("residual_dipole_body_Am2", p.residual_dipole_B_Am2, "A m^2");
   auto wheels = spacecraft.section("wheels");
   wheels.read("axes_body", p.body.wheel_axes_B, p.body.wheel_count);
   wheels.read("inertia_kg_m2", p.body.wheel_inertia_kg_m2, "kg m^2");
   wheels.read("max_torque_Nm", p.body.wheel_max_torque_Nm, "N m");
   wheels.read("max_momentum_Nms", p.body.wheel_max_momentum_Nms, "N m s");
+  wheels.read("viscous_friction_Nms_per_rad", p.body.wheel_viscous_friction_Nms_rad, "N m s/rad");
+  wheels.read("coulomb_friction_Nm", p.body.wheel_coulomb_friction_Nm, "N m");
   // A scalar applies to every wheel; slots beyond the count stay empty.
   for (int i = p.body.wheel_count; i < kMaxWheels; ++i) {
     p.body.wheel_inertia_kg_m2[i] = p.body.wheel_max_torque_Nm[i] = 0.0;
     p.body.wheel_max_momentum_Nms[i] = 0.0;
+    p.body.wheel_viscous_friction_Nms_rad[i] = p.body.wheel_coulomb_friction_Nm[i] = 0.0;
   }
   wheels.finish();
   auto torquers = spacecraft.section("torquers");
   torquers.read("max_dipole_Am2", p.torquer_max_dipole_Am2, "A m^2");
   torquers.finish();
+  readPanels(spacecraft, p);
+  readThrusters(spacecraft, p);
+  auto flaps = spacecraft.section("flaps");
+  p.flaps.fitted = spacecraft.has("flaps");
+  flaps.read("plate_area_m2", p.flaps.plate_area_m2, "m^2");
+  flaps.read("lever_arm_m", p.flaps.lever_arm_m, "m");
+  flaps.read("max_angle_rad", p.flaps.max_angle_rad, "rad");
+  readSurface(flaps, p.flaps);
+  flaps.problems(p.flaps.validate());
+  flaps.finish();
   spacecraft.problems(p.body.validate());
   spacecraft.finish();
 }
@@ -79,6 +142,8 @@ void readEnvironment(const bus::Scenario& scenario, bus::ParamReader environment
     environment.problem("igrf_file", e.what());
   }
   environment.read("gravity_gradient", p.gravity_gradient);
+  // Constant until the atmosphere model is connected.
+  environment.read("density_kg_m3", p.density_kg_m3, "kg/m^3");
   environment.read("disturbance_torque_body_Nm", p.disturbance_torque_B_Nm, "N m");
   environment.finish();
 }

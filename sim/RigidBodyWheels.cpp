@@ -66,6 +66,14 @@ std::vector<std::string> RigidBodyParams::validate() const {
       errors.push_back(indexed("wheel_max_momentum_Nms", i) + ": " + formatNumber(wheel_max_momentum_Nms(i)) +
                        " must be > 0");
     }
+    if (!(wheel_viscous_friction_Nms_rad(i) >= 0.0) || !std::isfinite(wheel_viscous_friction_Nms_rad(i))) {
+      errors.push_back(indexed("wheel_viscous_friction_Nms_rad", i) + ": " +
+                       formatNumber(wheel_viscous_friction_Nms_rad(i)) + " must be ≥ 0");
+    }
+    if (!(wheel_coulomb_friction_Nm(i) >= 0.0) || !std::isfinite(wheel_coulomb_friction_Nm(i))) {
+      errors.push_back(indexed("wheel_coulomb_friction_Nm", i) + ": " + formatNumber(wheel_coulomb_friction_Nm(i)) +
+                       " must be ≥ 0");
+    }
     J_spinless -= wheel_inertia_kg_m2(i) * axis * axis.transpose();
   }
   if (errors.empty() && Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(J_spinless).eigenvalues()(0) <= 0.0) {
@@ -79,14 +87,22 @@ RigidBodyWheels::RigidBodyWheels(const RigidBodyParams& params)
       active_(Eigen::Vector4d::Zero()),
       A_(Eigen::Matrix<double, 3, kMaxWheels>::Zero()),
       inertia_(Eigen::Vector4d::Zero()),
+      viscous_(Eigen::Vector4d::Zero()),
+      coulomb_(Eigen::Vector4d::Zero()),
+      inverse_effective_inertia_(Eigen::Vector4d::Zero()),
       J_spinless_(params.J_B_kg_m2) {
   for (int i = 0; i < params.wheel_count; ++i) {
     active_(i) = 1.0;
     A_.col(i) = params.wheel_axes_B.col(i);
     inertia_(i) = params.wheel_inertia_kg_m2(i);
+    viscous_(i) = params.wheel_viscous_friction_Nms_rad(i);
+    coulomb_(i) = params.wheel_coulomb_friction_Nm(i);
     J_spinless_ -= inertia_(i) * A_.col(i) * A_.col(i).transpose();
   }
   J_spinless_inv_ = J_spinless_.inverse();
+  for (int i = 0; i < params.wheel_count; ++i) {
+    inverse_effective_inertia_(i) = 1.0 / inertia_(i) + A_.col(i).dot(J_spinless_inv_ * A_.col(i));
+  }
 }
 
 RigidBodyState RigidBodyWheels::makeState(const Eigen::Quaterniond& q_NB, const Eigen::Vector3d& w_NB_B,
@@ -115,6 +131,18 @@ double RigidBodyWheels::kineticEnergy_J(const RigidBodyState& x) const {
   return energy;
 }
 
+Eigen::Vector4d RigidBodyWheels::frictionTorque_Nm(const RigidBodyState& x, double substep_s) const {
+  const Eigen::Vector4d speeds = wheelSpeeds_rad_s(x);
+  Eigen::Vector4d tau = Eigen::Vector4d::Zero();
+  for (int i = 0; i < params_.wheel_count; ++i) {
+    const double speed = speeds(i);
+    const double band = coulomb_(i) * substep_s * inverse_effective_inertia_(i);
+    const double dry = std::abs(speed) < band ? speed / band : static_cast<double>((speed > 0.0) - (speed < 0.0));
+    tau(i) = -viscous_(i) * speed - coulomb_(i) * dry;
+  }
+  return tau;
+}
+
 Eigen::Vector4d RigidBodyWheels::limitMotorTorque(const RigidBodyState& x, const Eigen::Vector4d& tau_cmd_Nm) const {
   const Eigen::Vector4d relative_momentum = inertia_.cwiseProduct(wheelSpeeds_rad_s(x));
   Eigen::Vector4d tau = Eigen::Vector4d::Zero();
@@ -131,11 +159,11 @@ Eigen::Vector4d RigidBodyWheels::limitMotorTorque(const RigidBodyState& x, const
 }
 
 RigidBodyWheels::Derivative RigidBodyWheels::derivative(const RigidBodyState& x, const Eigen::Vector3d& tau_ext_B_Nm,
-                                                        const Eigen::Vector4d& tau_motor_Nm) const {
-  const Eigen::Vector4d tau_m = tau_motor_Nm.cwiseProduct(active_);
+                                                        const Eigen::Vector4d& tau_motor_Nm, double substep_s) const {
+  const Eigen::Vector4d tau_axial = tau_motor_Nm.cwiseProduct(active_) + frictionTorque_Nm(x, substep_s);
   const Eigen::Vector3d H_B = J_spinless_ * x.w_NB_B + A_ * x.h_wheels_Nms;
   return Derivative{quatDerivative(x.q_NB, x.w_NB_B).coeffs(),
-                    J_spinless_inv_ * (tau_ext_B_Nm - x.w_NB_B.cross(H_B) - A_ * tau_m), tau_m};
+                    J_spinless_inv_ * (tau_ext_B_Nm - x.w_NB_B.cross(H_B) - A_ * tau_axial), tau_axial};
 }
 
 RigidBodyState RigidBodyWheels::advanced(const RigidBodyState& x, const Derivative& k, double dt_s) {

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <sstream>
 
 #include "bus/Convert.hpp"
@@ -41,6 +42,7 @@ nlohmann::ordered_json summarize(const bus::Scenario& scenario, const std::strin
   double sim_seconds = 0.0, pointing_max = 0.0, pointing_sum = 0.0;
   std::uint64_t pointing_count = 0;
   MomentumStats h;
+  std::uint64_t late_commands = 0;
   using TruthDef = std::remove_cvref_t<decltype(bus::topics::kTruth)>;
   recording.forEach(std::string(bus::topics::kTruth.name),
                     [&](std::uint64_t, const std::string&, const std::vector<std::uint8_t>& bytes) {
@@ -52,6 +54,9 @@ nlohmann::ordered_json summarize(const bus::Scenario& scenario, const std::strin
                       h.end = momentum;
                       sim_seconds = t;
                       ++steps;
+                      // The slower dipole command is due every `divider` steps;
+                      // only a wheel command older than its step was late.
+                      if (truth.wheel_cmd_age_steps() > 0) ++late_commands;
                       if (t < scenario.acquisition_s) return;
                       const Eigen::Vector3d axis_N = bus::quat(truth.q_inertial_body()) * axis_B;
                       const double error = std::atan2(
@@ -79,6 +84,22 @@ nlohmann::ordered_json summarize(const bus::Scenario& scenario, const std::strin
   s["wheel_momentum_Nms_max"] = h.max;
   s["wheel_momentum_Nms_end"] = h.end;
   s["wheel_momentum_fraction_max"] = capacity > 0 ? h.max / capacity : 0.0;
+  s["mode"] = scenario.pacing == bus::Pacing::kPaced ? "paced" : "lockstep";
+  s["wheel_commands_late"] = late_commands;
+  std::map<std::string, std::pair<std::uint64_t, std::uint64_t>> lateness;  // stale, overruns
+  using HealthDef = std::remove_cvref_t<decltype(bus::topics::kHealth)>;
+  recording.forEach(std::string(bus::topics::kHealth.name),
+                    [&](std::uint64_t, const std::string& source, const std::vector<std::uint8_t>& bytes) {
+                      const auto health = bus::deserialize<HealthDef>(bytes);
+                      lateness[source] = {health.stale_inputs(), health.overruns()};
+                    });
+  std::uint64_t stale = 0, overruns = 0;
+  for (const auto& [component, counts] : lateness) {
+    stale += counts.first;
+    overruns += counts.second;
+  }
+  s["stale_inputs"] = stale;
+  s["overruns"] = overruns;
   s["recording"] = recording_path;
   s["recording_sha256"] = recording.digest({std::string(bus::topics::kHealth.name)});
   return s;

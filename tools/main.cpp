@@ -11,7 +11,9 @@
 
 #include "bus/Shutdown.hpp"
 #include "components/Registry.hpp"
+#include "tools/FieldCommand.hpp"
 #include "tools/Launcher.hpp"
+#include "tools/OrbitCommand.hpp"
 #include "tools/RunDirectory.hpp"
 #include "tools/ShmClean.hpp"
 #include "tools/Summary.hpp"
@@ -151,11 +153,18 @@ int main(int argc, char** argv) {
   bench_cmd->add_option("scenario", bench_scenario, "scenario file (default: the default rig)");
   bench_cmd->add_option("--duration-s", bench_duration_s, "simulated seconds to run");
 
+  int orbit_exit = 0;
+  auto* orbit_cmd = tools::addOrbitCommand(app, orbit_exit);
+  int field_exit = 0;
+  auto* field_cmd = tools::addFieldCommand(app, field_exit);
+
   auto* clean_cmd = app.add_subcommand(
       "clean-shm", "remove Fast DDS shared-memory files no live process uses");
 
   CLI11_PARSE(app, argc, argv);
   if (run_cmd->parsed()) return run(run_options);
+  if (orbit_cmd->parsed()) return orbit_exit;
+  if (field_cmd->parsed()) return field_exit;
   if (clean_cmd->parsed()) {
     for (const auto& name : tools::cleanStaleSharedMemory()) std::cout << "removed " << name << "\n";
     return 0;

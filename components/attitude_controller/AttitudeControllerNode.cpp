@@ -34,8 +34,10 @@ AttitudeControllerNode::AttitudeControllerNode(bus::Bus& bus, bus::NodeOptions o
     : Component(bus, std::move(options)), controller_(params) {}
 
 void AttitudeControllerNode::step(const bus::StepContext& ctx) {
+  const auto tach = tach_.at(ctx.step);
+  const auto& held = last_tach_.update(tach);
   auto message = toMessage(
-      controller_.step(toInput(estimate_.at(ctx.step), tach_.at(ctx.step)), ctx.sim_time_ns));
+      controller_.step(toInput(estimate_.at(ctx.step), held ? *held : tach), ctx.sim_time_ns));
   message.header(bus::makeHeader(ctx, name()));
   command_.write(message);
 }
@@ -45,9 +47,7 @@ SunPointingControllerParams readParams(const bus::Scenario& scenario, const bus:
   bus::ConfigProblems reported_by_dynamics_server;
   const auto body = sim::readPlant(scenario, reported_by_dynamics_server).body;
   SunPointingControllerParams p;
-  p.wheel_count = body.wheel_count;
-  p.wheel_axes_B = body.wheel_axes_B;
-  p.wheel_inertia_kg_m2 = body.wheel_inertia_kg_m2;
+  p.wheels = {body.wheel_count, body.wheel_axes_B, body.wheel_inertia_kg_m2};
   auto r = scenario.componentParams(args.name, problems);
   r.read("kp_Nm_per_rad", p.kp_Nm_per_rad, "N m/rad");
   r.read("kd_Nm_s_per_rad", p.kd_Nm_s_per_rad, "N m s/rad");

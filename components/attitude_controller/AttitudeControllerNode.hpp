@@ -2,6 +2,7 @@
 #pragma once
 #include "bus/Component.hpp"
 #include "bus/NodeMain.hpp"
+#include "components/common/LastValid.hpp"
 #include "components/attitude_controller/SunPointingController.hpp"
 
 namespace flatsat::attitude_controller {
@@ -19,6 +20,7 @@ class AttitudeControllerNode final : public bus::Component {
   bus::InputOf<bus::topics::kAttitudeEstimate>& estimate_ =
       addInput(bus::topics::kAttitudeEstimate);
   bus::InputOf<bus::topics::kWheelTach>& tach_ = addInput(bus::topics::kWheelTach);
+  LastValid<msg::WheelTachReading> last_tach_;  // rides through tachometer dropouts
   bus::WriterOf<bus::topics::kWheelTorqueCmd>& command_ =
       addOutput(bus::topics::kWheelTorqueCmd);
   SunPointingController controller_;

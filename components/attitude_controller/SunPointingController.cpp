@@ -7,42 +7,18 @@
 
 #include <Eigen/Dense>
 
-namespace flatsat::attitude_controller {
+#include "components/common/Validation.hpp"
 
-namespace {
-constexpr double kUnitTolerance = 1e-6;
-}  // namespace
+namespace flatsat::attitude_controller {
 
 std::vector<std::string> SunPointingControllerParams::validate() const {
   std::vector<std::string> errors;
-  if (!(kp_Nm_per_rad > 0.0) || !std::isfinite(kp_Nm_per_rad)) {
-    errors.emplace_back("kp_Nm_per_rad: must be finite and > 0");
-  }
-  if (!(kd_Nm_s_per_rad > 0.0) || !std::isfinite(kd_Nm_s_per_rad)) {
-    errors.emplace_back("kd_Nm_s_per_rad: must be finite and > 0");
-  }
-  if (!(max_torque_Nm > 0.0) || !std::isfinite(max_torque_Nm)) {
-    errors.emplace_back("max_torque_Nm: must be finite and > 0");
-  }
-  if (!(max_rate_rad_s > 0.0) || !std::isfinite(max_rate_rad_s)) {
-    errors.emplace_back("max_rate_rad_s: must be finite and > 0");
-  }
-  if (!pointing_axis_B.allFinite() || !(std::abs(pointing_axis_B.norm() - 1.0) <= kUnitTolerance)) {
-    errors.emplace_back("pointing_axis_B: must be a unit vector");
-  }
-  if (wheel_count < 1 || wheel_count > 4) {
-    errors.emplace_back("wheel_count: must be in 1..4");
-  } else {
-    for (int i = 0; i < wheel_count; ++i) {
-      const Eigen::Vector3d a = wheel_axes_B.col(i);
-      if (!a.allFinite() || !(std::abs(a.norm() - 1.0) <= kUnitTolerance)) {
-        errors.emplace_back("wheel_axes_B: column " + std::to_string(i) + " must be a unit vector");
-      }
-      if (!(wheel_inertia_kg_m2[i] > 0.0) || !std::isfinite(wheel_inertia_kg_m2[i])) {
-        errors.emplace_back("wheel_inertia_kg_m2: wheel " + std::to_string(i) + " must be finite and > 0");
-      }
-    }
-  }
+  requirePositive(errors, "kp_Nm_per_rad", kp_Nm_per_rad);
+  requirePositive(errors, "kd_Nm_s_per_rad", kd_Nm_s_per_rad);
+  requirePositive(errors, "max_torque_Nm", max_torque_Nm);
+  requirePositive(errors, "max_rate_rad_s", max_rate_rad_s);
+  requireUnit(errors, "pointing_axis_B", pointing_axis_B);
+  append(errors, wheels.validate("wheels"));
   return errors;
 }
 
@@ -57,8 +33,8 @@ SunPointingController::SunPointingController(const Params& params)
     }
     throw std::invalid_argument(message);
   }
-  const int n = params_.wheel_count;
-  A_B_.leftCols(n) = params_.wheel_axes_B.leftCols(n);
+  const int n = params_.wheels.count;
+  A_B_ = params_.wheels.liveAxes_B();
   // Minimum-norm least-squares inverse: exact torque with ≥ 3 independent axes, the closest
   // achievable torque with fewer (a failed-wheel configuration).
   const Eigen::MatrixXd A = A_B_.leftCols(n);
@@ -83,7 +59,7 @@ SunPointingControllerOutput SunPointingController::step(const Input& in, std::in
   out.rate_limited = angle > max_error_rad_;
   const Eigen::Vector3d e = std::min(angle, max_error_rad_) * e_axis;
 
-  const Eigen::Vector3d h_wheels_B = A_B_ * params_.wheel_inertia_kg_m2.cwiseProduct(in.wheel_speed_rad_s);
+  const Eigen::Vector3d h_wheels_B = params_.wheels.momentum_B_Nms(in.wheel_speed_rad_s);
   Eigen::Vector3d tau = params_.kp_Nm_per_rad * e - params_.kd_Nm_s_per_rad * in.w_NB_B_rad_s +
                         in.w_NB_B_rad_s.cross(h_wheels_B);
   const double tau_norm = tau.norm();

@@ -7,6 +7,8 @@
 
 #include <Eigen/Core>
 
+#include "components/common/WheelGeometry.hpp"
+
 namespace flatsat::attitude_controller {
 
 /// PD gains, rate and torque limits and wheel geometry of the Sun-pointing loop.
@@ -16,11 +18,7 @@ struct SunPointingControllerParams {
   double max_torque_Nm = 0.01;    // [Nm] limit of |τ_cmd|, > 0
   double max_rate_rad_s = 0.005;  // [rad/s] limit of the slew rate k_p/k_d·|e|, > 0
   Eigen::Vector3d pointing_axis_B = Eigen::Vector3d::UnitX();  // [-] body axis put on the Sun, unit
-  int wheel_count = 3;            // [-] active wheels (slots 0..wheel_count-1), 1..4
-  // [-] spin axes in body axes, unit columns for the active wheels (default x, y, z; slot 3 unused)
-  Eigen::Matrix<double, 3, 4> wheel_axes_B = Eigen::Matrix<double, 3, 4>::Identity();
-  // [kg·m²] rotor inertia about its spin axis, > 0 for the active wheels
-  Eigen::Vector4d wheel_inertia_kg_m2 = Eigen::Vector4d::Constant(1.0e-4);
+  WheelGeometry wheels;           // [-] live wheels, spin axes, rotor inertias (see WheelGeometry)
 
   /// Every violation as "field: reason"; empty when valid.
   std::vector<std::string> validate() const;

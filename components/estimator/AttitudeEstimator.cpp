@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "components/common/Validation.hpp"
 #include "sim/Attitude.hpp"
 
 namespace flatsat::estimator {
@@ -58,15 +59,9 @@ bool triad(const Eigen::Vector3d& v1_B, const Eigen::Vector3d& v2_B, const Eigen
 
 std::vector<std::string> AttitudeEstimatorParams::validate() const {
   std::vector<std::string> errors;
-  if (!(kp_per_s >= 0.0) || !std::isfinite(kp_per_s)) {
-    errors.emplace_back("kp_per_s: must be finite and >= 0");
-  }
-  if (!(ki_per_s2 >= 0.0) || !std::isfinite(ki_per_s2)) {
-    errors.emplace_back("ki_per_s2: must be finite and >= 0");
-  }
-  if (!(max_bias_rad_s > 0.0) || !std::isfinite(max_bias_rad_s)) {
-    errors.emplace_back("max_bias_rad_s: must be finite and > 0");
-  }
+  requireNonNegative(errors, "kp_per_s", kp_per_s);
+  requireNonNegative(errors, "ki_per_s2", ki_per_s2);
+  requirePositive(errors, "max_bias_rad_s", max_bias_rad_s);
   return errors;
 }
 

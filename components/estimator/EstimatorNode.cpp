@@ -19,7 +19,7 @@ AttitudeEstimatorInput toInput(const msg::GyroReading& gyro, const msg::SunSenso
   in.sun_valid = sun.valid();
   if (magnetometer) {
     in.b_B_meas_T = bus::vec3(magnetometer->b_body_T());
-    in.b_valid = !magnetometer->saturated();
+    in.b_valid = magnetometer->valid() && !magnetometer->saturated();
   }
   in.sun_N_ref_unit = reference.sun_N_unit;
   in.b_N_ref_T = reference.b_N_T;
@@ -51,7 +51,9 @@ EstimatorNode::EstimatorNode(bus::Bus& bus, bus::NodeOptions options,
 void EstimatorNode::step(const bus::StepContext& ctx) {
   std::optional<msg::MagnetometerReading> magnetometer;
   if (magnetometer_ != nullptr) magnetometer = magnetometer_->at(ctx.step);
-  const auto in = toInput(gyro_.at(ctx.step), sun_.at(ctx.step), magnetometer,
+  const auto gyro = gyro_.at(ctx.step);
+  const auto& held = last_gyro_.update(gyro);
+  const auto in = toInput(held ? *held : gyro, sun_.at(ctx.step), magnetometer,
                           reference_.step(ctx.sim_time_ns));
   auto message = toMessage(filter_.step(in, ctx.sim_time_ns));
   message.header(bus::makeHeader(ctx, name()));

@@ -2,6 +2,7 @@
 #pragma once
 #include "bus/Component.hpp"
 #include "bus/NodeMain.hpp"
+#include "components/common/LastValid.hpp"
 #include "components/estimator/AttitudeEstimator.hpp"
 #include "components/estimator/ReferenceModel.hpp"
 
@@ -26,6 +27,7 @@ class EstimatorNode final : public bus::Component {
   bus::InputOf<bus::topics::kMagnetometer>* magnetometer_ = nullptr;  // optional
   bus::WriterOf<bus::topics::kAttitudeEstimate>& estimate_ =
       addOutput(bus::topics::kAttitudeEstimate);
+  LastValid<msg::GyroReading> last_gyro_;  // rides through gyro dropouts
   AttitudeEstimator filter_;
   ReferenceModel reference_;
 };

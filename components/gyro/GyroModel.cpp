@@ -4,19 +4,15 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "components/common/Validation.hpp"
+
 namespace flatsat::gyro {
 
 std::vector<std::string> GyroParams::validate() const {
   std::vector<std::string> errors;
-  if (!(angle_random_walk_rad_per_sqrt_s >= 0.0) || !std::isfinite(angle_random_walk_rad_per_sqrt_s)) {
-    errors.emplace_back("angle_random_walk_rad_per_sqrt_s: must be finite and >= 0");
-  }
-  if (!(rate_random_walk_rad_per_s_sqrt_s >= 0.0) || !std::isfinite(rate_random_walk_rad_per_s_sqrt_s)) {
-    errors.emplace_back("rate_random_walk_rad_per_s_sqrt_s: must be finite and >= 0");
-  }
-  if (!bias0_B_rad_s.allFinite()) {
-    errors.emplace_back("bias0_B_rad_s: must be finite");
-  }
+  requireNonNegative(errors, "angle_random_walk_rad_per_sqrt_s", angle_random_walk_rad_per_sqrt_s);
+  requireNonNegative(errors, "rate_random_walk_rad_per_s_sqrt_s", rate_random_walk_rad_per_s_sqrt_s);
+  requireFinite(errors, "bias0_B_rad_s", bias0_B_rad_s);
   return errors;
 }
 

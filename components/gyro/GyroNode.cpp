@@ -3,18 +3,14 @@
 
 namespace flatsat::gyro {
 
-GyroParams readParams(const bus::Scenario& scenario, const bus::NodeArgs& args,
-                      bus::ConfigProblems& problems) {
-  GyroParams p;
-  p.seed = scenario.seedFor(args.name);
-  auto r = scenario.componentParams(args.name, problems);
-  r.read("angle_random_walk_rad_per_sqrt_s", p.angle_random_walk_rad_per_sqrt_s, "-");
-  r.read("rate_random_walk_rad_per_s_sqrt_s", p.rate_random_walk_rad_per_s_sqrt_s, "-");
-  r.read("bias0_body_rad_s", p.bias0_B_rad_s, "rad/s");
-  r.read("seed", p.seed);
-  r.problems(p.validate());
-  r.finish();
-  return p;
+EmulatorParams<GyroParams> readParams(const bus::Scenario& scenario, const bus::NodeArgs& args,
+                         bus::ConfigProblems& problems) {
+  return readEmulatorParams<GyroParams>(
+      scenario, args.name, 3, "rad/s", problems, [&](bus::ParamReader& r, GyroParams& m) {
+    r.read("angle_random_walk_rad_per_sqrt_s", m.angle_random_walk_rad_per_sqrt_s, "-");
+    r.read("rate_random_walk_rad_per_s_sqrt_s", m.rate_random_walk_rad_per_s_sqrt_s, "-");
+    r.read("bias0_body_rad_s", m.bias0_B_rad_s, "rad/s");
+      });
 }
 
 }  // namespace flatsat::gyro

@@ -12,13 +12,15 @@ inline GyroInput toInput(const msg::TruthState& truth) { return {bus::vec3(truth
 inline msg::GyroReading toMessage(const GyroOutput& out) {
   msg::GyroReading m;
   bus::put(m.w_body_rad_s(), out.w_NB_B_rad_s);
+  m.valid(true);  // the fault layer may clear it
   return m;
 }
 
-using GyroNode = EmulatorNode<GyroModel, bus::topics::kGyro, toInput, toMessage>;
+using GyroNode =
+    EmulatorNode<GyroModel, bus::topics::kGyro, toInput, toMessage, &GyroOutput::w_NB_B_rad_s>;
 
 /// components.<name> of the scenario.
-GyroParams readParams(const bus::Scenario& scenario, const bus::NodeArgs& args,
+EmulatorParams<GyroParams> readParams(const bus::Scenario& scenario, const bus::NodeArgs& args,
                       bus::ConfigProblems& problems);
 
 }  // namespace flatsat::gyro

@@ -4,26 +4,17 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "components/common/Validation.hpp"
+
 namespace flatsat::magnetometer {
 
 std::vector<std::string> MagnetometerParams::validate() const {
   std::vector<std::string> errors;
-  // Written as !(x >= 0) so NaN is rejected too.
-  if (!(noise_T >= 0.0) || !std::isfinite(noise_T)) {
-    errors.emplace_back("noise_T: must be finite and >= 0");
-  }
-  if (!bias_B_T.allFinite()) {
-    errors.emplace_back("bias_B_T: must be finite");
-  }
-  if (!scale_factor.allFinite() || !(scale_factor.minCoeff() > 0.0)) {
-    errors.emplace_back("scale_factor: every axis must be finite and > 0");
-  }
-  if (!(quantum_T >= 0.0) || !std::isfinite(quantum_T)) {
-    errors.emplace_back("quantum_T: must be finite and >= 0");
-  }
-  if (!(range_T > 0.0) || !std::isfinite(range_T)) {
-    errors.emplace_back("range_T: must be finite and > 0");
-  }
+  requireNonNegative(errors, "noise_T", noise_T);
+  requireFinite(errors, "bias_B_T", bias_B_T);
+  requireAllPositive(errors, "scale_factor", scale_factor, "axis");
+  requireNonNegative(errors, "quantum_T", quantum_T);
+  requirePositive(errors, "range_T", range_T);
   return errors;
 }
 

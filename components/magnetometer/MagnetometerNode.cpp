@@ -3,20 +3,16 @@
 
 namespace flatsat::magnetometer {
 
-MagnetometerParams readParams(const bus::Scenario& scenario, const bus::NodeArgs& args,
-                              bus::ConfigProblems& problems) {
-  MagnetometerParams p;
-  p.seed = scenario.seedFor(args.name);
-  auto r = scenario.componentParams(args.name, problems);
-  r.read("noise_T", p.noise_T, "T");
-  r.read("bias_body_T", p.bias_B_T, "T");
-  r.read("scale_factor", p.scale_factor, "-");
-  r.read("quantum_T", p.quantum_T, "T");
-  r.read("range_T", p.range_T, "T");
-  r.read("seed", p.seed);
-  r.problems(p.validate());
-  r.finish();
-  return p;
+EmulatorParams<MagnetometerParams> readParams(const bus::Scenario& scenario, const bus::NodeArgs& args,
+                                 bus::ConfigProblems& problems) {
+  return readEmulatorParams<MagnetometerParams>(
+      scenario, args.name, 3, "T", problems, [&](bus::ParamReader& r, MagnetometerParams& m) {
+    r.read("noise_T", m.noise_T, "T");
+    r.read("bias_body_T", m.bias_B_T, "T");
+    r.read("scale_factor", m.scale_factor, "-");
+    r.read("quantum_T", m.quantum_T, "T");
+    r.read("range_T", m.range_T, "T");
+      });
 }
 
 }  // namespace flatsat::magnetometer

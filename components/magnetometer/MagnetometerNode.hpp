@@ -15,13 +15,15 @@ inline msg::MagnetometerReading toMessage(const MagnetometerOutput& out) {
   msg::MagnetometerReading m;
   bus::put(m.b_body_T(), out.b_B_T);
   m.saturated(out.saturated);
+  m.valid(true);  // the fault layer may clear it
   return m;
 }
 
-using MagnetometerNode = EmulatorNode<MagnetometerModel, bus::topics::kMagnetometer, toInput, toMessage>;
+using MagnetometerNode =
+    EmulatorNode<MagnetometerModel, bus::topics::kMagnetometer, toInput, toMessage, &MagnetometerOutput::b_B_T>;
 
 /// components.<name> of the scenario.
-MagnetometerParams readParams(const bus::Scenario& scenario, const bus::NodeArgs& args,
+EmulatorParams<MagnetometerParams> readParams(const bus::Scenario& scenario, const bus::NodeArgs& args,
                               bus::ConfigProblems& problems);
 
 }  // namespace flatsat::magnetometer

@@ -29,31 +29,39 @@ RecorderNode::RecorderNode(bus::Bus& bus, bus::NodeOptions options, const Record
       record(def);
     }
   });
-  health_ = std::make_unique<bus::ReaderOf<bus::topics::kHealth>>(
-      bus, bus::topics::kHealth, [this](const msg::Health& health) {
-        std::lock_guard lock(recording_mutex_);
-        recording_.insert(std::string(bus::topics::kHealth.name), health.header().step(),
-                          bus::text(health.header().source()), 0,
-                          bus::serialize<std::remove_cvref_t<decltype(bus::topics::kHealth)>>(health));
+  health_ = recordAsItComes(bus, bus::topics::kHealth);
+  fault_commands_ = recordAsItComes(bus, bus::topics::kFaultCmd);
+  fault_events_ = recordAsItComes(bus, bus::topics::kFaultEvent);
+}
+
+template <class Def>
+std::unique_ptr<bus::Reader<Def>> RecorderNode::recordAsItComes(bus::Bus& bus, const Def& def) {
+  return std::make_unique<bus::Reader<Def>>(
+      bus, def, [this, topic = std::string(def.name)](const typename Def::Type& sample) {
+        store(topic, sample.header(), bus::serialize<Def>(sample));
       });
+}
+
+void RecorderNode::store(const std::string& topic, const msg::SampleHeader& header,
+                         const std::vector<std::uint8_t>& payload) {
+  std::lock_guard lock(recording_mutex_);
+  recording_.insert(topic, header.step(), bus::text(header.source()), header.sim_time_ns(),
+                    payload);
 }
 
 template <class Def>
 void RecorderNode::record(const Def& def) {
-  auto& input = addInput(def);
-  const std::uint32_t divider = dividerOf(std::string(def.producer));
-  store_.push_back([this, &input, divider, topic = std::string(def.name)](std::uint64_t k) {
-    if (k % divider != 0) return;
-    const auto sample = input.at(k);
-    recording_.insert(topic, k, bus::text(sample.header().source()),
-                      sample.header().sim_time_ns(), bus::serialize<Def>(sample));
+  // Samples are stored as they arrive; in lockstep the input's wait for step
+  // k then guarantees they are all in before StepDone(k).
+  addInput(def, [this, topic = std::string(def.name)](const typename Def::Type& sample) {
+    store(topic, sample.header(), bus::serialize<Def>(sample));
   });
 }
 
 void RecorderNode::step(const bus::StepContext& ctx) {
+  if ((ctx.step + 1) % params_.commit_every_steps != 0) return;
   std::lock_guard lock(recording_mutex_);
-  for (const auto& store : store_) store(ctx.step);
-  if ((ctx.step + 1) % params_.commit_every_steps == 0) recording_.commit();
+  recording_.commit();
 }
 
 RecorderParams readParams(const bus::Scenario& scenario, const bus::NodeArgs& args,

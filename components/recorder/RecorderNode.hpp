@@ -17,9 +17,10 @@ struct RecorderParams {
   std::vector<std::string> validate() const;
 };
 
-/// Records every stepped topic of the rig, gated like any component: it
-/// reports StepDone(k) only once every sample due at k is stored, so the
-/// recording is complete by construction. Health is recorded as it comes.
+/// Records every stepped topic of the rig as samples arrive. In lockstep it
+/// is gated like any component: it reports StepDone(k) only once every
+/// sample due at k is stored, so the recording is complete by construction.
+/// Health is recorded too.
 class RecorderNode final : public bus::Component {
  public:
   RecorderNode(bus::Bus& bus, bus::NodeOptions options, const RecorderParams& params);
@@ -28,12 +29,18 @@ class RecorderNode final : public bus::Component {
   void step(const bus::StepContext& ctx) override;
   template <class Def>
   void record(const Def& def);
+  /// Topics that are not stepped: stored on arrival, never waited for.
+  template <class Def>
+  std::unique_ptr<bus::Reader<Def>> recordAsItComes(bus::Bus& bus, const Def& def);
+  void store(const std::string& topic, const msg::SampleHeader& header,
+             const std::vector<std::uint8_t>& payload);
 
   RecorderParams params_;
   std::mutex recording_mutex_;  // the step thread and the health callback both insert
   bus::Recording recording_;
-  std::vector<std::function<void(std::uint64_t step)>> store_;  // one per recorded topic
   std::unique_ptr<bus::ReaderOf<bus::topics::kHealth>> health_;
+  std::unique_ptr<bus::ReaderOf<bus::topics::kFaultCmd>> fault_commands_;
+  std::unique_ptr<bus::ReaderOf<bus::topics::kFaultEvent>> fault_events_;
 };
 
 /// components.<name>; the file goes to the run directory (--out).

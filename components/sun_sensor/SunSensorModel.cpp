@@ -8,27 +8,19 @@
 
 #include <Eigen/Geometry>
 
-namespace flatsat::sun_sensor {
+#include "components/common/Validation.hpp"
 
-namespace {
-constexpr double kUnitTolerance = 1e-6;
-}  // namespace
+namespace flatsat::sun_sensor {
 
 std::vector<std::string> SunSensorParams::validate() const {
   std::vector<std::string> errors;
-  if (!boresight_B.allFinite() || !(std::abs(boresight_B.norm() - 1.0) <= kUnitTolerance)) {
-    errors.emplace_back("boresight_B: must be a unit vector");
-  }
-  if (!(noise_rad >= 0.0) || !std::isfinite(noise_rad)) {
-    errors.emplace_back("noise_rad: must be finite and >= 0");
-  }
+  requireUnit(errors, "boresight_B", boresight_B);
+  requireNonNegative(errors, "noise_rad", noise_rad);
   // Below π/2 because the transverse angles are rebuilt through their tangents.
-  if (!(fov_half_angle_rad > 0.0 && fov_half_angle_rad < std::numbers::pi / 2.0)) {
-    errors.emplace_back("fov_half_angle_rad: must be in (0, pi/2)");
-  }
-  if (!(min_illumination >= 0.0 && min_illumination <= 1.0)) {
-    errors.emplace_back("min_illumination: must be in [0, 1]");
-  }
+  require(errors, fov_half_angle_rad > 0.0 && fov_half_angle_rad < std::numbers::pi / 2.0,
+          "fov_half_angle_rad", "must be in (0, pi/2)");
+  require(errors, min_illumination >= 0.0 && min_illumination <= 1.0, "min_illumination",
+          "must be in [0, 1]");
   return errors;
 }
 

@@ -18,10 +18,11 @@ inline msg::SunSensorReading toMessage(const SunSensorOutput& out) {
   return m;
 }
 
-using SunSensorNode = EmulatorNode<SunSensorModel, bus::topics::kSunSensor, toInput, toMessage>;
+using SunSensorNode =
+    EmulatorNode<SunSensorModel, bus::topics::kSunSensor, toInput, toMessage, &SunSensorOutput::sun_B_unit>;
 
 /// components.<name> of the scenario.
-SunSensorParams readParams(const bus::Scenario& scenario, const bus::NodeArgs& args,
+EmulatorParams<SunSensorParams> readParams(const bus::Scenario& scenario, const bus::NodeArgs& args,
                            bus::ConfigProblems& problems);
 
 }  // namespace flatsat::sun_sensor

@@ -6,45 +6,20 @@
 
 #include <Eigen/Geometry>
 
-namespace flatsat::unloading_controller {
+#include "components/common/Validation.hpp"
 
-namespace {
-constexpr double kUnitTolerance = 1e-6;
-}  // namespace
+namespace flatsat::unloading_controller {
 
 std::vector<std::string> CrossProductUnloadingParams::validate() const {
   std::vector<std::string> errors;
-  if (!(gain_per_s > 0.0) || !std::isfinite(gain_per_s)) {
-    errors.emplace_back("gain_per_s: must be finite and > 0");
-  }
-  if (!max_dipole_Am2.allFinite() || !(max_dipole_Am2.minCoeff() > 0.0)) {
-    errors.emplace_back("max_dipole_Am2: every coil must be finite and > 0");
-  }
-  if (wheel_count < 1 || wheel_count > 4) {
-    errors.emplace_back("wheel_count: must be in 1..4");
-  } else {
-    for (int i = 0; i < wheel_count; ++i) {
-      const Eigen::Vector3d a = wheel_axes_B.col(i);
-      if (!a.allFinite() || !(std::abs(a.norm() - 1.0) <= kUnitTolerance)) {
-        errors.emplace_back("wheel_axes_B: column " + std::to_string(i) + " must be a unit vector");
-      }
-      if (!(wheel_inertia_kg_m2[i] > 0.0) || !std::isfinite(wheel_inertia_kg_m2[i])) {
-        errors.emplace_back("wheel_inertia_kg_m2: wheel " + std::to_string(i) + " must be finite and > 0");
-      }
-    }
-  }
-  if (!h_target_B_Nms.allFinite()) {
-    errors.emplace_back("h_target_B_Nms: must be finite");
-  }
-  if (!(h_stop_Nms >= 0.0) || !std::isfinite(h_stop_Nms)) {
-    errors.emplace_back("h_stop_Nms: must be finite and >= 0");
-  }
-  if (!(h_start_Nms >= h_stop_Nms) || !std::isfinite(h_start_Nms)) {
-    errors.emplace_back("h_start_Nms: must be finite and >= h_stop_Nms");
-  }
-  if (!(min_field_T > 0.0) || !std::isfinite(min_field_T)) {
-    errors.emplace_back("min_field_T: must be finite and > 0");
-  }
+  requirePositive(errors, "gain_per_s", gain_per_s);
+  requireAllPositive(errors, "max_dipole_Am2", max_dipole_Am2, "coil");
+  append(errors, wheels.validate("wheels"));
+  requireFinite(errors, "h_target_B_Nms", h_target_B_Nms);
+  requireNonNegative(errors, "h_stop_Nms", h_stop_Nms);
+  require(errors, h_start_Nms >= h_stop_Nms && std::isfinite(h_start_Nms), "h_start_Nms",
+          "must be finite and >= h_stop_Nms");
+  requirePositive(errors, "min_field_T", min_field_T);
   return errors;
 }
 
@@ -61,11 +36,8 @@ CrossProductUnloading::CrossProductUnloading(const Params& params) : params_(par
 void CrossProductUnloading::reset() { unloading_ = false; }
 
 CrossProductUnloadingOutput CrossProductUnloading::step(const Input& in, std::int64_t /*t_ns*/) {
-  const int n = params_.wheel_count;
   Output out;
-  out.h_B_Nms = params_.wheel_axes_B.leftCols(n) *
-                    params_.wheel_inertia_kg_m2.head(n).cwiseProduct(in.wheel_speed_rad_s.head(n)) -
-                params_.h_target_B_Nms;
+  out.h_B_Nms = params_.wheels.momentum_B_Nms(in.wheel_speed_rad_s) - params_.h_target_B_Nms;
 
   // Hysteresis keeps the coils from chattering around a single threshold; with both
   // thresholds 0 unloading runs whenever there is momentum to dump.

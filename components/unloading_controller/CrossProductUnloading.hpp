@@ -7,17 +7,15 @@
 
 #include <Eigen/Core>
 
+#include "components/common/WheelGeometry.hpp"
+
 namespace flatsat::unloading_controller {
 
 /// Gain, coil limits, wheel geometry and hysteresis of the momentum-unloading law.
 struct CrossProductUnloadingParams {
   double gain_per_s = 0.01;  // [1/s] k: decay rate of H⊥, > 0
   Eigen::Vector3d max_dipole_Am2 = Eigen::Vector3d::Constant(0.2);  // [A·m²] per-coil limit, > 0
-  int wheel_count = 3;       // [-] active wheels (slots 0..wheel_count-1), 1..4
-  // [-] spin axes in body axes, unit columns for the active wheels (default x, y, z; slot 3 unused)
-  Eigen::Matrix<double, 3, 4> wheel_axes_B = Eigen::Matrix<double, 3, 4>::Identity();
-  // [kg·m²] rotor inertia about its spin axis, > 0 for the active wheels
-  Eigen::Vector4d wheel_inertia_kg_m2 = Eigen::Vector4d::Constant(1.0e-4);
+  WheelGeometry wheels;      // [-] live wheels, spin axes, rotor inertias (see WheelGeometry)
   Eigen::Vector3d h_target_B_Nms = Eigen::Vector3d::Zero();  // [Nms] momentum to keep, finite
   double h_start_Nms = 0.0;     // [Nms] |H − h_target| above which unloading starts, >= h_stop_Nms
   double h_stop_Nms = 0.0;      // [Nms] |H − h_target| below which it stops, >= 0

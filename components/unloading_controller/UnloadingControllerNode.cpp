@@ -10,7 +10,8 @@ namespace {
 
 CrossProductUnloadingInput toInput(const msg::WheelTachReading& tach,
                                    const msg::MagnetometerReading& field) {
-  return {bus::vec4(tach.wheel_speed_rad_s()), bus::vec3(field.b_body_T()), !field.saturated()};
+  return {bus::vec4(tach.wheel_speed_rad_s()), bus::vec3(field.b_body_T()),
+          field.valid() && !field.saturated()};
 }
 
 msg::DipoleCmd toMessage(const CrossProductUnloadingOutput& out) {
@@ -29,8 +30,10 @@ UnloadingControllerNode::UnloadingControllerNode(bus::Bus& bus, bus::NodeOptions
     : Component(bus, std::move(options)), law_(params) {}
 
 void UnloadingControllerNode::step(const bus::StepContext& ctx) {
-  auto message =
-      toMessage(law_.step(toInput(tach_.at(ctx.step), field_.at(ctx.step)), ctx.sim_time_ns));
+  const auto tach = tach_.at(ctx.step);
+  const auto& held = last_tach_.update(tach);
+  auto message = toMessage(
+      law_.step(toInput(held ? *held : tach, field_.at(ctx.step)), ctx.sim_time_ns));
   message.header(bus::makeHeader(ctx, name()));
   command_.write(message);
 }
@@ -40,9 +43,7 @@ CrossProductUnloadingParams readParams(const bus::Scenario& scenario, const bus:
   bus::ConfigProblems reported_by_dynamics_server;
   const auto plant = sim::readPlant(scenario, reported_by_dynamics_server);
   CrossProductUnloadingParams p;
-  p.wheel_count = plant.body.wheel_count;
-  p.wheel_axes_B = plant.body.wheel_axes_B;
-  p.wheel_inertia_kg_m2 = plant.body.wheel_inertia_kg_m2;
+  p.wheels = {plant.body.wheel_count, plant.body.wheel_axes_B, plant.body.wheel_inertia_kg_m2};
   p.max_dipole_Am2 = plant.torquer_max_dipole_Am2;
   auto r = scenario.componentParams(args.name, problems);
   r.read("enabled", p.enabled);

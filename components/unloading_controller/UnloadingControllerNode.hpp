@@ -2,6 +2,7 @@
 #pragma once
 #include "bus/Component.hpp"
 #include "bus/NodeMain.hpp"
+#include "components/common/LastValid.hpp"
 #include "components/unloading_controller/CrossProductUnloading.hpp"
 
 namespace flatsat::unloading_controller {
@@ -17,6 +18,7 @@ class UnloadingControllerNode final : public bus::Component {
   void step(const bus::StepContext& ctx) override;
 
   bus::InputOf<bus::topics::kWheelTach>& tach_ = addInput(bus::topics::kWheelTach);
+  LastValid<msg::WheelTachReading> last_tach_;  // rides through tachometer dropouts
   bus::InputOf<bus::topics::kMagnetometer>& field_ = addInput(bus::topics::kMagnetometer);
   bus::WriterOf<bus::topics::kDipoleCmd>& command_ = addOutput(bus::topics::kDipoleCmd);
   CrossProductUnloading law_;

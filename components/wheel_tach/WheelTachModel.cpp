@@ -4,19 +4,15 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "components/common/Validation.hpp"
+
 namespace flatsat::wheel_tach {
 
 std::vector<std::string> WheelTachParams::validate() const {
   std::vector<std::string> errors;
-  if (wheel_count < 1 || wheel_count > 4) {
-    errors.emplace_back("wheel_count: must be in 1..4");
-  }
-  if (!(noise_rad_s >= 0.0) || !std::isfinite(noise_rad_s)) {
-    errors.emplace_back("noise_rad_s: must be finite and >= 0");
-  }
-  if (!(quantum_rad_s >= 0.0) || !std::isfinite(quantum_rad_s)) {
-    errors.emplace_back("quantum_rad_s: must be finite and >= 0");
-  }
+  requireInRange(errors, "wheel_count", wheel_count, 1, 4);
+  requireNonNegative(errors, "noise_rad_s", noise_rad_s);
+  requireNonNegative(errors, "quantum_rad_s", quantum_rad_s);
   return errors;
 }
 

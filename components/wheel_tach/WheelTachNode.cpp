@@ -5,19 +5,16 @@
 
 namespace flatsat::wheel_tach {
 
-WheelTachParams readParams(const bus::Scenario& scenario, const bus::NodeArgs& args,
-                           bus::ConfigProblems& problems) {
+EmulatorParams<WheelTachParams> readParams(const bus::Scenario& scenario, const bus::NodeArgs& args,
+                              bus::ConfigProblems& problems) {
   bus::ConfigProblems reported_by_dynamics_server;
-  WheelTachParams p;
-  p.wheel_count = sim::readPlant(scenario, reported_by_dynamics_server).body.wheel_count;
-  p.seed = scenario.seedFor(args.name);
-  auto r = scenario.componentParams(args.name, problems);
-  r.read("noise_rad_s", p.noise_rad_s, "rad/s");
-  r.read("quantum_rad_s", p.quantum_rad_s, "rad/s");
-  r.read("seed", p.seed);
-  r.problems(p.validate());
-  r.finish();
-  return p;
+  const int wheels = sim::readPlant(scenario, reported_by_dynamics_server).body.wheel_count;
+  return readEmulatorParams<WheelTachParams>(
+      scenario, args.name, 4, "rad/s", problems, [&](bus::ParamReader& r, WheelTachParams& m) {
+    m.wheel_count = wheels;
+    r.read("noise_rad_s", m.noise_rad_s, "rad/s");
+    r.read("quantum_rad_s", m.quantum_rad_s, "rad/s");
+      });
 }
 
 }  // namespace flatsat::wheel_tach

@@ -14,13 +14,15 @@ inline WheelTachInput toInput(const msg::TruthState& truth) {
 inline msg::WheelTachReading toMessage(const WheelTachOutput& out) {
   msg::WheelTachReading m;
   bus::put(m.wheel_speed_rad_s(), out.wheel_speed_rad_s);
+  m.valid(true);  // the fault layer may clear it
   return m;
 }
 
-using WheelTachNode = EmulatorNode<WheelTachModel, bus::topics::kWheelTach, toInput, toMessage>;
+using WheelTachNode =
+    EmulatorNode<WheelTachModel, bus::topics::kWheelTach, toInput, toMessage, &WheelTachOutput::wheel_speed_rad_s>;
 
 /// components.<name> of the scenario; the wheel count comes from spacecraft.wheels.
-WheelTachParams readParams(const bus::Scenario& scenario, const bus::NodeArgs& args,
+EmulatorParams<WheelTachParams> readParams(const bus::Scenario& scenario, const bus::NodeArgs& args,
                            bus::ConfigProblems& problems);
 
 }  // namespace flatsat::wheel_tach

@@ -38,10 +38,12 @@ class ScriptedPeers final : public bus::TimeMaster {
     msg::WheelTachReading tach;
     tach.header(bus::makeHeader(ctx, "wheel_tach"));
     bus::put(tach.wheel_speed_rad_s(), speedsAt(ctx.step));
+    tach.valid(true);
     tach_.write(tach);
     msg::MagnetometerReading field;
     field.header(bus::makeHeader(ctx, "magnetometer"));
     bus::put(field.b_body_T(), fieldAt(ctx.step));
+    field.valid(true);
     field_.write(field);
   }
   void advance(const bus::StepContext& ctx) override {
@@ -65,9 +67,9 @@ TEST_CASE("unloading controller node answers every step with the cross-product l
   unloading_controller::CrossProductUnloadingParams params;
   params.gain_per_s = kGain;
   params.max_dipole_Am2 = Eigen::Vector3d::Constant(kMaxDipole);
-  params.wheel_count = 3;
-  params.wheel_axes_B = axes;
-  params.wheel_inertia_kg_m2 = Eigen::Vector4d(kWheelInertia, kWheelInertia, kWheelInertia, 0);
+  params.wheels.count = 3;
+  params.wheels.axes_B = axes;
+  params.wheels.inertia_kg_m2 = Eigen::Vector4d(kWheelInertia, kWheelInertia, kWheelInertia, 0);
 
   const bus::Schedule node_view = {
       {"dynamics_server", 1}, {"unloading_controller", 1}, {"wheel_tach", 1}, {"magnetometer", 1}};

@@ -59,11 +59,11 @@ TEST_CASE("Unloading torque is -k times the momentum normal to the field", "[com
 TEST_CASE("Unloading reads H from the tachometers of a skewed wheel set", "[components][unloading_controller]") {
   CrossProductUnloadingParams p = unsaturated();
   const double s = 1.0 / std::sqrt(3.0);
-  p.wheel_count = 3;
-  p.wheel_axes_B << 1.0, 0.0, s, 0.7,  //
+  p.wheels.count = 3;
+  p.wheels.axes_B << 1.0, 0.0, s, 0.7,  //
       0.0, 1.0, s, 0.7,                //
       0.0, 0.0, s, 0.7;                // slot 3 is not a unit vector: unused, never read
-  p.wheel_inertia_kg_m2 = Eigen::Vector4d(1e-4, 2e-4, 3e-4, 0.0);
+  p.wheels.inertia_kg_m2 = Eigen::Vector4d(1e-4, 2e-4, 3e-4, 0.0);
   p.h_target_B_Nms = Eigen::Vector3d(0.0, 0.0, 0.01);
   CrossProductUnloading law(p);
   const auto out = law.step({Eigen::Vector4d(100.0, -50.0, 200.0, 1e6), Eigen::Vector3d(0, 0, 3e-5), true}, 0);
@@ -163,8 +163,8 @@ TEST_CASE("Unloading params reject bad values", "[components][unloading_controll
   CrossProductUnloadingParams p;
   p.gain_per_s = 0.0;
   p.max_dipole_Am2.z() = -0.1;
-  p.wheel_axes_B.col(0) = Eigen::Vector3d(1.0, 1.0, 0.0);
-  p.wheel_inertia_kg_m2[2] = 0.0;
+  p.wheels.axes_B.col(0) = Eigen::Vector3d(1.0, 1.0, 0.0);
+  p.wheels.inertia_kg_m2[2] = 0.0;
   p.h_target_B_Nms.x() = std::numeric_limits<double>::infinity();
   p.h_stop_Nms = 0.05;
   p.h_start_Nms = 0.02;
@@ -173,8 +173,8 @@ TEST_CASE("Unloading params reject bad values", "[components][unloading_controll
   REQUIRE(errors.size() == 7);
   CHECK(errors[0].rfind("gain_per_s:", 0) == 0);
   CHECK(errors[1].rfind("max_dipole_Am2:", 0) == 0);
-  CHECK(errors[2] == "wheel_axes_B: column 0 must be a unit vector");
-  CHECK(errors[3] == "wheel_inertia_kg_m2: wheel 2 must be finite and > 0");
+  CHECK(errors[2] == "wheels.axes_B: column 0 must be a unit vector");
+  CHECK(errors[3] == "wheels.inertia_kg_m2: wheel 2 must be finite and > 0");
   CHECK(errors[4].rfind("h_target_B_Nms:", 0) == 0);
   CHECK(errors[5].rfind("h_start_Nms:", 0) == 0);
   CHECK(errors[6].rfind("min_field_T:", 0) == 0);

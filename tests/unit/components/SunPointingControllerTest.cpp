@@ -106,7 +106,7 @@ TEST_CASE("Sun pointing PD law: error vector, torque and wheel torques", "[compo
 TEST_CASE("Sun pointing cancels the gyroscopic torque of the wheels", "[components][attitude_controller]") {
   SunPointingControllerParams p = pd();
   p.max_torque_Nm = 1.0;
-  p.wheel_inertia_kg_m2 = Eigen::Vector4d(0.1, 0.2, 0.05, 0.3);
+  p.wheels.inertia_kg_m2 = Eigen::Vector4d(0.1, 0.2, 0.05, 0.3);
   SunPointingController ctl(p);
   const Eigen::Vector3d w(0.01, -0.02, 0.03);
   // h_w = Σ a_i I_i Ω_i with a = x, y, z; the unused fourth slot is ignored: (0.1, 0.2, −0.05).
@@ -185,8 +185,8 @@ TEST_CASE("Sun pointing distributes the torque over the wheels", "[components][a
   GIVEN("a four-wheel pyramid") {
     SunPointingControllerParams p = pd();
     p.max_torque_Nm = 0.1;
-    p.wheel_count = 4;
-    p.wheel_axes_B = pyramidAxes(60 * kDeg);
+    p.wheels.count = 4;
+    p.wheels.axes_B = pyramidAxes(60 * kDeg);
     SunPointingController ctl(p);
     const Eigen::Vector3d sun = Eigen::Vector3d(0.5, -0.6, 0.3).normalized();
     const Eigen::Vector3d w(1e-3, -2e-3, 0.0);
@@ -195,16 +195,16 @@ TEST_CASE("Sun pointing distributes the torque over the wheels", "[components][a
       const Eigen::Vector3d c = Eigen::Vector3d::UnitX().cross(sun);
       const Eigen::Vector3d e = std::atan2(c.norm(), sun.x()) * c.normalized();
       const Eigen::Vector3d tau = p.kp_Nm_per_rad * e - p.kd_Nm_s_per_rad * w;
-      CHECK((-p.wheel_axes_B * out.wheel_torque_Nm - tau).norm() < 1e-15);
+      CHECK((-p.wheels.axes_B * out.wheel_torque_Nm - tau).norm() < 1e-15);
       CHECK((out.tau_cmd_B_Nm - tau).norm() < 1e-15);
       CHECK(std::abs(out.wheel_torque_Nm.dot(Eigen::Vector4d(1.0, 1.0, -1.0, -1.0))) < 1e-15);  // ⊥ null space
     }
   }
   GIVEN("only an x and a y wheel left") {
     SunPointingControllerParams p = pd();
-    p.wheel_count = 2;
+    p.wheels.count = 2;
     SunPointingController ctl(p);
-    p.wheel_count = 3;
+    p.wheels.count = 3;
     SunPointingController full(p);
     const auto in = input(Eigen::Vector3d(0.5, -0.6, 0.3).normalized(), Eigen::Vector3d(1e-3, 2e-3, 3e-3));
     const Eigen::Vector3d wanted = full.step(in, 0).tau_cmd_B_Nm;
@@ -222,16 +222,16 @@ TEST_CASE("Sun pointing converges to 0.1 deg in closed loop", "[components][atti
   p.kd_Nm_s_per_rad = 1.0;  // ζ ≈ 0.7 for J ≈ 10 kg·m²
   p.max_torque_Nm = 0.02;
   p.max_rate_rad_s = 0.02;
-  p.wheel_count = 4;
-  p.wheel_axes_B = pyramidAxes(60 * kDeg);
-  p.wheel_inertia_kg_m2 = Eigen::Vector4d::Constant(0.05);
+  p.wheels.count = 4;
+  p.wheels.axes_B = pyramidAxes(60 * kDeg);
+  p.wheels.inertia_kg_m2 = Eigen::Vector4d::Constant(0.05);
   SunPointingController ctl(p);
 
   Plant plant;
   plant.J << 12.0, 0.3, -0.2,  //
       0.3, 10.0, 0.1,          //
       -0.2, 0.1, 8.0;
-  plant.A = p.wheel_axes_B;
+  plant.A = p.wheels.axes_B;
   plant.q_NB = Eigen::Quaterniond(Eigen::AngleAxisd(2.0, Eigen::Vector3d(0.2, 1.0, -0.4).normalized()));
   plant.w = Eigen::Vector3d(0.01, -0.02, 0.015);
   plant.h = Eigen::Vector4d(0.05, -0.03, 0.02, 0.01);
@@ -245,7 +245,7 @@ TEST_CASE("Sun pointing converges to 0.1 deg in closed loop", "[components][atti
   constexpr int kSteps = 9000;  // 900 s at 10 Hz
   for (int k = 0; k < kSteps; ++k) {
     const Eigen::Vector3d sun_B = plant.q_NB.conjugate() * sun_N;
-    const Eigen::Vector4d speeds = plant.h.cwiseQuotient(p.wheel_inertia_kg_m2);
+    const Eigen::Vector4d speeds = plant.h.cwiseQuotient(p.wheels.inertia_kg_m2);
     const auto out = ctl.step(input(sun_B, plant.w, speeds), k * 100'000'000LL);
     saturated = saturated || out.saturated;
     rate_limited = rate_limited || out.rate_limited;
@@ -276,8 +276,8 @@ TEST_CASE("Sun pointing params reject bad values", "[components][attitude_contro
   p.max_torque_Nm = std::numeric_limits<double>::infinity();
   p.max_rate_rad_s = -1.0;
   p.pointing_axis_B = Eigen::Vector3d(0.0, 0.0, 2.0);
-  p.wheel_axes_B.col(1) *= 0.5;
-  p.wheel_inertia_kg_m2[2] = 0.0;
+  p.wheels.axes_B.col(1) *= 0.5;
+  p.wheels.inertia_kg_m2[2] = 0.0;
   const auto errors = p.validate();
   REQUIRE(errors.size() == 7);
   CHECK(errors[0].rfind("kp_Nm_per_rad:", 0) == 0);
@@ -285,10 +285,10 @@ TEST_CASE("Sun pointing params reject bad values", "[components][attitude_contro
   CHECK(errors[2].rfind("max_torque_Nm:", 0) == 0);
   CHECK(errors[3].rfind("max_rate_rad_s:", 0) == 0);
   CHECK(errors[4].rfind("pointing_axis_B:", 0) == 0);
-  CHECK(errors[5] == "wheel_axes_B: column 1 must be a unit vector");
-  CHECK(errors[6] == "wheel_inertia_kg_m2: wheel 2 must be finite and > 0");
+  CHECK(errors[5] == "wheels.axes_B: column 1 must be a unit vector");
+  CHECK(errors[6] == "wheels.inertia_kg_m2: wheel 2 must be finite and > 0");
   p = SunPointingControllerParams{};
-  p.wheel_count = 5;
-  CHECK(p.validate() == std::vector<std::string>{"wheel_count: must be in 1..4"});
+  p.wheels.count = 5;
+  CHECK(p.validate() == std::vector<std::string>{"wheels.count: must be in 1..4"});
   CHECK_THROWS_AS(SunPointingController(p), std::invalid_argument);
 }

@@ -58,7 +58,16 @@ bool sameBits(const Truth& a, const Truth& b) {
          std::memcmp(&a.illumination, &b.illumination, sizeof(double)) == 0 &&
          same(a.dipole_applied_B_Am2, b.dipole_applied_B_Am2) &&
          same(a.tau_gravity_gradient_B_Nm, b.tau_gravity_gradient_B_Nm) &&
-         same(a.tau_magnetic_B_Nm, b.tau_magnetic_B_Nm) && same(a.tau_disturbance_B_Nm, b.tau_disturbance_B_Nm);
+         same(a.tau_magnetic_B_Nm, b.tau_magnetic_B_Nm) && same(a.tau_disturbance_B_Nm, b.tau_disturbance_B_Nm) &&
+         same(a.tau_residual_magnetic_B_Nm, b.tau_residual_magnetic_B_Nm) &&
+         same(a.wheel_friction_torque_Nm, b.wheel_friction_torque_Nm) && same(a.wind_B_m_s, b.wind_B_m_s) &&
+         std::memcmp(&a.solar_flux_W_m2, &b.solar_flux_W_m2, sizeof(double)) == 0 &&
+         same(a.f_aerodynamic_B_N, b.f_aerodynamic_B_N) && same(a.tau_aerodynamic_B_Nm, b.tau_aerodynamic_B_Nm) &&
+         same(a.tau_flaps_B_Nm, b.tau_flaps_B_Nm) && same(a.f_solar_pressure_B_N, b.f_solar_pressure_B_N) &&
+         same(a.tau_solar_pressure_B_Nm, b.tau_solar_pressure_B_Nm) &&
+         same(a.flap_angle_applied_rad, b.flap_angle_applied_rad) && same(a.f_thruster_B_N, b.f_thruster_B_N) &&
+         same(a.tau_thruster_B_Nm, b.tau_thruster_B_Nm) && same(a.thruster_impulse_Ns, b.thruster_impulse_Ns) &&
+         same(a.thruster_gimbal_applied_rad, b.thruster_gimbal_applied_rad);
 }
 
 // A command sequence that exercises saturation of both actuators.

@@ -242,3 +242,138 @@ TEST_CASE("limitMotorTorque saturates torque and momentum", "[sim][body]") {
     CHECK(tau == Eigen::Vector4d(0.001, 0.001, 0.001, 0.0));
   }
 }
+
+TEST_CASE("Wheel friction parameters are validated", "[sim][actuators]") {
+  RigidBodyParams p = pyramidSpacecraft();
+  p.wheel_viscous_friction_Nms_rad(1) = -1e-6;
+  p.wheel_coulomb_friction_Nm(2) = std::numeric_limits<double>::infinity();
+  const auto errors = p.validate();
+  CHECK(errors.size() == 2);
+  CHECK(anyStartsWith(errors, "wheel_viscous_friction_Nms_rad[1]: "));
+  CHECK(anyStartsWith(errors, "wheel_coulomb_friction_Nm[2]: "));
+  p.wheel_count = 1;  // absent wheels are not checked
+  CHECK(p.validate().empty());
+}
+
+TEST_CASE("A coasting wheel spins down as the friction law's closed form", "[sim][actuators]") {
+  // One wheel on the z principal axis, body at rest: only z moves. The friction
+  // τ_f on the rotor and −τ_f on the body give I_eff Ω̇ = τ_f for the relative
+  // speed, 1/I_eff = 1/I_w + 1/J'_z. With τ_f = −c_v Ω − c_c sgn Ω and Ω0 > 0:
+  //   viscous   Ω = Ω0 e^(−t/T),  T = I_eff / c_v
+  //   Coulomb   Ω = Ω0 − c_c t / I_eff,  stops at t* = I_eff Ω0 / c_c
+  //   both      Ω = (Ω0 + c_c/c_v) e^(−t/T) − c_c/c_v,  t* = T ln(1 + c_v Ω0 / c_c)
+  const double Iw = 0.01;
+  const double Jz_spinless = 4.0 - Iw;
+  const double I_eff = 1.0 / (1.0 / Iw + 1.0 / Jz_spinless);
+  constexpr double kDt = 0.1;
+  constexpr int kSubsteps = 4;
+  const auto coast = [&](double c_v, double c_c, double omega0, double t_end, auto&& expected, double t_stop) {
+    RigidBodyParams p = withOneWheel(Eigen::Vector3d::UnitZ(), Iw);
+    p.wheel_viscous_friction_Nms_rad(0) = c_v;
+    p.wheel_coulomb_friction_Nm(0) = c_c;
+    const RigidBodyWheels body(p);
+    RigidBodyState x = body.makeState(Eigen::Quaterniond::Identity(), Eigen::Vector3d::Zero(),
+                                      Eigen::Vector4d(omega0, 0.0, 0.0, 0.0));
+    const int steps = static_cast<int>(std::lround(t_end / kDt));
+    const Eigen::Vector3d H0 = body.totalMomentum_N_Nms(x);
+    double max_error = 0.0;
+    double min_speed = omega0;
+    double max_momentum = 0.0;  // relative to |H0|
+    for (int k = 1; k <= steps; ++k) {
+      x = body.propagate(x, (k - 1) * kDt, kDt, kSubsteps, Eigen::Vector4d::Zero(), kNoTorque);
+      const double t = k * kDt;
+      const double speed = body.wheelSpeeds_rad_s(x)(0);
+      min_speed = std::min(min_speed, speed);
+      max_momentum = std::max(max_momentum, (body.totalMomentum_N_Nms(x) - H0).norm() / H0.norm());
+      if (t < t_stop - kDt) max_error = std::max(max_error, std::abs(speed - expected(t)));
+    }
+    struct Result {
+      double max_error, min_speed, final_speed, max_momentum;
+    };
+    return Result{max_error, min_speed, body.wheelSpeeds_rad_s(x)(0), max_momentum};
+  };
+  const double kNever = std::numeric_limits<double>::infinity();
+
+  WHEN("the bearing is viscous only (c_v = 1e-4 N m s/rad, Ω0 = 100 rad/s)") {
+    const double c_v = 1e-4;
+    const auto r = coast(c_v, 0.0, 100.0, 300.0, [&](double t) { return 100.0 * std::exp(-c_v * t / I_eff); }, kNever);
+    THEN("Ω decays exponentially with T = I_eff / c_v ≈ 99.8 s") {
+      CHECK(r.max_error < 1e-9);
+      CHECK(r.max_momentum < 1e-12);  // friction is internal: H_N = I_w Ω0 ẑ throughout (relative)
+    }
+  }
+  WHEN("the friction is dry only (c_c = 1e-3 N m, Ω0 = 10 rad/s, t* ≈ 99.8 s)") {
+    const double c_c = 1e-3;
+    const double t_stop = I_eff * 10.0 / c_c;
+    const auto r = coast(0.0, c_c, 10.0, 150.0, [&](double t) { return 10.0 - c_c * t / I_eff; }, t_stop);
+    THEN("Ω falls linearly, stops at t* and never reverses") {
+      CHECK(r.max_error < 1e-11);
+      CHECK(r.min_speed >= 0.0);
+      CHECK(std::abs(r.final_speed) < 1e-12);
+      CHECK(r.max_momentum < 1e-12);
+    }
+  }
+  WHEN("both act (c_v = 1e-4, c_c = 1e-3, Ω0 = 100 rad/s)") {
+    const double c_v = 1e-4;
+    const double c_c = 1e-3;
+    const double T = I_eff / c_v;
+    const double t_stop = T * std::log(1.0 + c_v * 100.0 / c_c);  // ≈ 239 s
+    const auto r = coast(c_v, c_c, 100.0, 300.0,
+                         [&](double t) { return (100.0 + c_c / c_v) * std::exp(-t / T) - c_c / c_v; }, t_stop);
+    THEN("Ω follows the combined closed form to the stop and rests there") {
+      CHECK(t_stop == Approx(239.2).epsilon(1e-3));
+      CHECK(r.max_error < 1e-9);
+      CHECK(r.min_speed >= 0.0);
+      CHECK(std::abs(r.final_speed) < 1e-12);
+    }
+  }
+}
+
+TEST_CASE("Motor torque against friction settles at the balance speed", "[sim][actuators]") {
+  GIVEN("τ_m = 5e-3 N m, c_v = 1e-3 N m s/rad, c_c = 1e-3 N m, Ω0 = 1 rad/s") {
+    const double Iw = 0.01;
+    RigidBodyParams p = withOneWheel(Eigen::Vector3d::UnitZ(), Iw);
+    p.wheel_viscous_friction_Nms_rad(0) = 1e-3;
+    p.wheel_coulomb_friction_Nm(0) = 1e-3;
+    const RigidBodyWheels body(p);
+    const double I_eff = 1.0 / (1.0 / Iw + 1.0 / (4.0 - Iw));
+    const double omega_ss = (5e-3 - 1e-3) / 1e-3;  // 4 rad/s
+    RigidBodyState x = body.makeState(Eigen::Quaterniond::Identity(), Eigen::Vector3d::Zero(),
+                                      Eigen::Vector4d(1.0, 0.0, 0.0, 0.0));
+    const Eigen::Vector4d tau_m(5e-3, 0.0, 0.0, 0.0);
+    const Eigen::Vector3d H0 = body.totalMomentum_N_Nms(x);
+    double max_error = 0.0;
+    for (int k = 1; k <= 3000; ++k) {  // 300 s = 30 time constants
+      x = body.propagate(x, (k - 1) * 0.1, 0.1, 4, tau_m, kNoTorque);
+      const double expected = omega_ss + (1.0 - omega_ss) * std::exp(-1e-3 * k * 0.1 / I_eff);
+      max_error = std::max(max_error, std::abs(body.wheelSpeeds_rad_s(x)(0) - expected));
+    }
+    THEN("Ω = Ω_ss + (Ω0 − Ω_ss) e^(−c_v t / I_eff), Ω_ss = (τ_m − c_c) / c_v; friction balances the motor") {
+      CHECK(max_error < 1e-9);
+      CHECK(body.wheelSpeeds_rad_s(x)(0) == Approx(omega_ss).epsilon(1e-12));
+      CHECK(body.frictionTorque_Nm(x, 0.025)(0) == Approx(-5e-3).epsilon(1e-12));
+      CHECK((body.totalMomentum_N_Nms(x) - H0).norm() < 1e-15);  // the motor torque is internal too
+    }
+  }
+}
+
+TEST_CASE("Friction torque: sign law outside the stiction band, ramp inside", "[sim][actuators]") {
+  const double Iw = 0.01;
+  RigidBodyParams p = withOneWheel(Eigen::Vector3d::UnitZ(), Iw);
+  p.wheel_viscous_friction_Nms_rad(0) = 2e-4;
+  p.wheel_coulomb_friction_Nm(0) = 1e-3;
+  const RigidBodyWheels body(p);
+  const double h = 0.025;
+  const double band = 1e-3 * h * (1.0 / Iw + 1.0 / (4.0 - Iw));  // Ω_ε = c_c h / I_eff
+  const auto friction = [&](double speed, double substep) {
+    return body.frictionTorque_Nm(body.makeState(Eigen::Quaterniond::Identity(), Eigen::Vector3d::Zero(),
+                                                 Eigen::Vector4d(speed, 0.0, 0.0, 0.0)),
+                                  substep)(0);
+  };
+  CHECK(friction(-50.0, h) == Approx(-2e-4 * -50.0 + 1e-3).epsilon(1e-14));
+  CHECK(friction(2.0 * band, h) == Approx(-2e-4 * 2.0 * band - 1e-3).epsilon(1e-14));
+  CHECK(friction(0.5 * band, h) == Approx(-2e-4 * 0.5 * band - 0.5e-3).epsilon(1e-12));
+  CHECK(friction(0.0, h) == 0.0);
+  CHECK(friction(0.0, 0.0) == 0.0);  // bare sign law: sgn 0 = 0
+  CHECK(friction(1e-9, 0.0) == Approx(-1e-3).epsilon(1e-6));
+}

@@ -1,0 +1,352 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "sim/SphericalHarmonicField.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <vector>
+
+#include "sim/Format.hpp"
+#include "sim/Time.hpp"
+
+namespace flatsat::sim {
+namespace {
+
+constexpr int kMaxDegree = GaussCoefficients::kMaxDegree;
+// IGRF and WMM releases both predict the field for five years past their last epoch.
+constexpr double kPredictionSpan_yr = 5.0;
+
+[[noreturn]] void fail(const std::string& file, int line, const std::string& reason) {
+  throw std::runtime_error(file + (line > 0 ? ":" + std::to_string(line) : std::string()) + ": " + reason);
+}
+
+bool parseNumber(const std::string& token, double& value) {
+  const char* end = token.data() + token.size();
+  const auto [ptr, ec] = std::from_chars(token.data(), end, value);
+  return ec == std::errc() && ptr == end;
+}
+
+// Reads "n m" and checks that it names a coefficient of the given kind ('g' or 'h').
+void readDegreeOrder(std::istringstream& words, char kind, const std::string& file, int line, int& n, int& m) {
+  if (!(words >> n >> m)) fail(file, line, "expected degree n and order m");
+  if (n < 1 || n > kMaxDegree || m < 0 || m > n || (kind == 'h' && m == 0)) {
+    fail(file, line,
+         std::string("no coefficient ") + kind + " " + std::to_string(n) + " " + std::to_string(m) +
+             " (need 1 ≤ n ≤ 13, 0 ≤ m ≤ n, and m ≥ 1 for h)");
+  }
+}
+
+void requireYear(double year, double first, double last, const std::string& file) {
+  if (!(year >= first && year <= last)) {
+    fail(file, 0,
+         "decimal year " + formatNumber(year) + " is outside [" + formatNumber(first) + ", " + formatNumber(last) +
+             "] covered by the file");
+  }
+}
+
+// Every g_n^m and h_n^m (m ≥ 1) up to the highest degree read must have had a row.
+void requireComplete(const std::array<std::array<bool, kMaxDegree + 1>, kMaxDegree + 1> (&seen)[2], int degree,
+                     const std::string& file) {
+  if (degree == 0) fail(file, 0, "no coefficient rows");
+  for (int n = 1; n <= degree; ++n) {
+    for (int m = 0; m <= n; ++m) {
+      for (int kind = 0; kind < (m == 0 ? 1 : 2); ++kind) {
+        if (!seen[kind][n][m]) {
+          fail(file, 0,
+               std::string("no \"") + "gh"[kind] + " " + std::to_string(n) + " " + std::to_string(m) +
+                   "\" row although the file reaches degree " + std::to_string(degree));
+        }
+      }
+    }
+  }
+}
+
+// Header "g/h n m 1900.0 … 2025.0 2025-30": the epochs, then the label of the SV column.
+std::vector<double> parseEpochs(std::istringstream& words, const std::string& file, int line) {
+  std::string token;
+  if (!(words >> token) || token != "n" || !(words >> token) || token != "m") {
+    fail(file, line, "header must start with \"g/h n m\"");
+  }
+  std::vector<double> epochs;
+  double epoch = 0.0;
+  while (words >> token && parseNumber(token, epoch)) {
+    if (!epochs.empty() && epoch <= epochs.back()) fail(file, line, "epochs must increase, found " + token);
+    epochs.push_back(epoch);
+  }
+  if (epochs.size() < 2) fail(file, line, "header lists fewer than two epochs");
+  if (token.empty() || parseNumber(token, epoch)) fail(file, line, "header lacks the secular-variation column");
+  if (words >> token) fail(file, line, "unexpected header column after the secular variation: " + token);
+  return epochs;
+}
+
+// The highest degree with a non-zero term, so that IGRF before 2000 runs at degree 10.
+int effectiveDegree(const GaussCoefficients& c) {
+  for (int n = c.degree; n > 1; --n) {
+    for (int m = 0; m <= n; ++m) {
+      if (c.g_nT[n][m] != 0.0 || c.h_nT[n][m] != 0.0 || c.g_dot_nT_yr[n][m] != 0.0 || c.h_dot_nT_yr[n][m] != 0.0) {
+        return n;
+      }
+    }
+  }
+  return 1;
+}
+
+}  // namespace
+
+MagneticElements magneticElements(const Eigen::Vector3d& b_G_nT) {
+  const double h = std::hypot(b_G_nT.x(), b_G_nT.y());
+  return MagneticElements{b_G_nT, h, b_G_nT.norm(), std::atan2(b_G_nT.y(), b_G_nT.x()), std::atan2(b_G_nT.z(), h)};
+}
+
+MagneticElementRates magneticElementRates(const Eigen::Vector3d& b_G_nT, const Eigen::Vector3d& b_dot_G_nT_yr) {
+  const double x = b_G_nT.x(), y = b_G_nT.y(), z = b_G_nT.z();
+  const double xd = b_dot_G_nT_yr.x(), yd = b_dot_G_nT_yr.y(), zd = b_dot_G_nT_yr.z();
+  const double h = std::hypot(x, y);
+  const double f = b_G_nT.norm();
+  const double h_dot = (x * xd + y * yd) / h;
+  return MagneticElementRates{b_dot_G_nT_yr, h_dot, (x * xd + y * yd + z * zd) / f, (x * yd - y * xd) / (h * h),
+                              (h * zd - z * h_dot) / (f * f)};
+}
+
+SphericalHarmonicField::SphericalHarmonicField(const GaussCoefficients& coefficients, double reference_radius_m)
+    : coefficients_(coefficients), reference_radius_m_(reference_radius_m) {
+  if (coefficients.degree < 1 || coefficients.degree > kMaxDegree) {
+    throw std::invalid_argument("SphericalHarmonicField: degree " + std::to_string(coefficients.degree) +
+                                " is outside 1..13");
+  }
+  if (!(reference_radius_m > 0.0)) {
+    throw std::invalid_argument("SphericalHarmonicField: reference radius " + formatNumber(reference_radius_m) +
+                                " m must be positive");
+  }
+  for (int n = 1; n <= kMaxDegree; ++n) {
+    zonal_slope_[n] = std::sqrt(0.5 * n * (n + 1));
+    if (n >= 2) sectoral_[n] = std::sqrt(1.0 - 0.5 / n);
+    for (int m = 0; m <= n; ++m) {
+      root_n2_m2_[n][m] = std::sqrt(double(n * n - m * m));
+      if (m == n) continue;
+      recursion_a_[n][m] = (2.0 * n - 1.0) / root_n2_m2_[n][m];
+      recursion_b_[n][m] = std::sqrt(double((n - 1) * (n - 1) - m * m)) / root_n2_m2_[n][m];
+    }
+  }
+}
+
+Eigen::Vector3d SphericalHarmonicField::synthesize(const Table& g, const Table& h, const GeocentricPosition& p) const {
+  // Potential V = a Σₙ (a/r)^(n+1) Σₘ [gₙᵐ cos mλ + hₙᵐ sin mλ] Pₙᵐ(cos θ), θ the
+  // geocentric colatitude, and B = −∇V (Alken et al. 2021, Eq. 1). In geocentric NED:
+  //   X′ =  Σₙ (a/r)^(n+2) Σₘ (g cos mλ + h sin mλ) dPₙᵐ/dθ
+  //   Y′ =  Σₙ (a/r)^(n+2) Σₘ m (g sin mλ − h cos mλ) Pₙᵐ / sin θ
+  //   Z′ = −Σₙ (n+1) (a/r)^(n+2) Σₘ (g cos mλ + h sin mλ) Pₙᵐ
+  // Pₙᵐ are Schmidt semi-normalised: √((2 − δₘ₀)(n−m)!/(n+m)!) times the Ferrers
+  // functions. For m ≥ 1 they carry a factor sin θ, so the recursions run on
+  // Qₙᵐ = Pₙᵐ / sin θ, which is finite at the poles: Y′ and dPₙᵐ/dθ need no division
+  // by sin θ, and the east component and D keep their limits on the polar axis, the
+  // meridian being the one of the longitude given (what the WMM's special pole
+  // summation computes).
+  const int degree = coefficients_.degree;
+  const double mu = std::sin(p.latitude_rad);     // cos θ
+  const double sin_t = std::cos(p.latitude_rad);  // sin θ ≥ 0
+
+  // Degree recursion (Abramowitz & Stegun 8.5.3, Schmidt-normalised):
+  //   √(n² − m²) Pₙᵐ = (2n − 1) cos θ Pₙ₋₁ᵐ − √((n−1)² − m²) Pₙ₋₂ᵐ,
+  // started from P₀⁰ = 1 and the sectoral Qₘᵐ = √(1 − 1/(2m)) sin θ Qₘ₋₁ᵐ⁻¹, Q₁¹ = 1.
+  std::array<double, kMaxDegree + 1> p0;  // Pₙ⁰
+  Table q;                                // q[n][m] = Qₙᵐ, m ≥ 1, n ≥ m − 1
+  p0[0] = 1.0;
+  p0[1] = mu;
+  for (int n = 2; n <= degree; ++n) p0[n] = recursion_a_[n][0] * mu * p0[n - 1] - recursion_b_[n][0] * p0[n - 2];
+  for (int m = 1; m <= degree; ++m) {
+    q[m - 1][m] = 0.0;
+    q[m][m] = m == 1 ? 1.0 : sectoral_[m] * sin_t * q[m - 1][m - 1];
+    for (int n = m + 1; n <= degree; ++n) {
+      q[n][m] = recursion_a_[n][m] * mu * q[n - 1][m] - recursion_b_[n][m] * q[n - 2][m];
+    }
+  }
+
+  std::array<double, kMaxDegree + 1> cos_ml;
+  std::array<double, kMaxDegree + 1> sin_ml;
+  cos_ml[0] = 1.0;
+  sin_ml[0] = 0.0;
+  cos_ml[1] = std::cos(p.longitude_rad);
+  sin_ml[1] = std::sin(p.longitude_rad);
+  for (int m = 2; m <= degree; ++m) {
+    cos_ml[m] = cos_ml[m - 1] * cos_ml[1] - sin_ml[m - 1] * sin_ml[1];
+    sin_ml[m] = sin_ml[m - 1] * cos_ml[1] + cos_ml[m - 1] * sin_ml[1];
+  }
+
+  const double ratio = reference_radius_m_ / p.radius_m;
+  double radial = ratio * ratio;  // (a/r)^(n+2) after the first multiplication
+  Eigen::Vector3d b = Eigen::Vector3d::Zero();
+  for (int n = 1; n <= degree; ++n) {
+    radial *= ratio;
+    // dPₙ⁰/dθ = −√(n(n+1)/2) Pₙ¹ (A&S 8.5.4 at m = 0 with the Schmidt factors).
+    double x = -g[n][0] * zonal_slope_[n] * sin_t * q[n][1];
+    double y = 0.0;
+    double z = g[n][0] * p0[n];
+    for (int m = 1; m <= n; ++m) {
+      const double gh_cos = g[n][m] * cos_ml[m] + h[n][m] * sin_ml[m];
+      const double gh_sin = g[n][m] * sin_ml[m] - h[n][m] * cos_ml[m];
+      // sin θ dPₙᵐ/dθ = n cos θ Pₙᵐ − √(n² − m²) Pₙ₋₁ᵐ (A&S 8.5.4, Schmidt-normalised).
+      const double dp = n * mu * q[n][m] - root_n2_m2_[n][m] * q[n - 1][m];
+      x += gh_cos * dp;
+      y += m * gh_sin * q[n][m];
+      z += gh_cos * sin_t * q[n][m];
+    }
+    b += radial * Eigen::Vector3d(x, y, -(n + 1) * z);
+  }
+  return b;
+}
+
+Eigen::Vector3d SphericalHarmonicField::b_C_nT(const GeocentricPosition& p) const {
+  return synthesize(coefficients_.g_nT, coefficients_.h_nT, p);
+}
+
+Eigen::Vector3d SphericalHarmonicField::bDot_C_nT_yr(const GeocentricPosition& p) const {
+  return synthesize(coefficients_.g_dot_nT_yr, coefficients_.h_dot_nT_yr, p);
+}
+
+Eigen::Vector3d SphericalHarmonicField::b_G_nT(const GeodeticPosition& p) const {
+  const GeocentricPosition c = geocentricFromGeodetic(p);
+  return R_GC(p.latitude_rad, c.latitude_rad) * b_C_nT(c);
+}
+
+Eigen::Vector3d SphericalHarmonicField::bDot_G_nT_yr(const GeodeticPosition& p) const {
+  const GeocentricPosition c = geocentricFromGeodetic(p);
+  return R_GC(p.latitude_rad, c.latitude_rad) * bDot_C_nT_yr(c);
+}
+
+MagneticElements SphericalHarmonicField::elements(const GeodeticPosition& p) const {
+  return magneticElements(b_G_nT(p));
+}
+
+Eigen::Vector3d SphericalHarmonicField::b_E_T(const Eigen::Vector3d& r_E_m) const {
+  const GeocentricPosition c = geocentricFromEarthFixed(r_E_m);
+  return 1e-9 * (R_EC(c) * b_C_nT(c));
+}
+
+Eigen::Vector3d SphericalHarmonicField::b_N_T(const Eigen::Vector3d& r_N_m, double jd_ut1) const {
+  const Eigen::Matrix3d R = R_EN(jd_ut1);
+  return R.transpose() * b_E_T(R * r_N_m);
+}
+
+SphericalHarmonicField igrf14(const std::string& igrf_coeff_file, double decimal_year) {
+  const std::string& file = igrf_coeff_file;
+  std::ifstream in(file);
+  if (!in) fail(file, 0, "cannot open the IGRF coefficient file");
+
+  std::vector<double> epochs;
+  struct Row {
+    char kind;
+    int n, m;
+    std::vector<double> values;  // one per epoch, then the secular variation
+  };
+  std::vector<Row> rows;
+  std::array<std::array<bool, kMaxDegree + 1>, kMaxDegree + 1> seen[2] = {};
+  int degree = 0;
+  std::string text;
+  for (int line = 1; std::getline(in, text); ++line) {
+    std::istringstream words(text);
+    std::string kind;
+    if (!(words >> kind) || kind.front() == '#' || kind == "c/s") continue;
+    if (kind == "g/h") {
+      if (!epochs.empty()) fail(file, line, "second \"g/h n m\" header");
+      epochs = parseEpochs(words, file, line);
+      continue;
+    }
+    if (kind != "g" && kind != "h") fail(file, line, "row type \"" + kind + "\" is neither g nor h");
+    if (epochs.empty()) fail(file, line, "coefficient row before the \"g/h n m\" header");
+    Row row{kind[0], 0, 0, {}};
+    readDegreeOrder(words, row.kind, file, line, row.n, row.m);
+    bool& was_seen = seen[row.kind == 'h'][row.n][row.m];
+    if (was_seen)
+      fail(file, line, "second row for " + kind + " " + std::to_string(row.n) + " " + std::to_string(row.m));
+    was_seen = true;
+    std::string token;
+    double value = 0.0;
+    while (words >> token) {
+      if (!parseNumber(token, value)) fail(file, line, "\"" + token + "\" is not a number");
+      row.values.push_back(value);
+    }
+    if (row.values.size() != epochs.size() + 1) {
+      fail(file, line,
+           "expected " + std::to_string(epochs.size() + 1) +
+               " values (one per epoch, then the secular variation), found " + std::to_string(row.values.size()));
+    }
+    degree = std::max(degree, row.n);
+    rows.push_back(std::move(row));
+  }
+  if (epochs.empty()) fail(file, 0, "no \"g/h n m\" header line");
+  requireComplete(seen, degree, file);
+  requireYear(decimal_year, epochs.front(), epochs.back() + kPredictionSpan_yr, file);
+
+  // Linear between the epochs around the year; the SV column after the last epoch.
+  const std::size_t last = epochs.size() - 1;
+  std::size_t k = 0;
+  while (k < last && decimal_year >= epochs[k + 1]) ++k;
+  GaussCoefficients c;
+  c.degree = degree;
+  c.decimal_year = decimal_year;
+  for (const Row& row : rows) {
+    const double slope =
+        k == last ? row.values[last + 1] : (row.values[k + 1] - row.values[k]) / (epochs[k + 1] - epochs[k]);
+    const double value = row.values[k] + (decimal_year - epochs[k]) * slope;
+    (row.kind == 'g' ? c.g_nT : c.h_nT)[row.n][row.m] = value;
+    (row.kind == 'g' ? c.g_dot_nT_yr : c.h_dot_nT_yr)[row.n][row.m] = slope;
+  }
+  c.degree = effectiveDegree(c);
+  return SphericalHarmonicField(c);
+}
+
+SphericalHarmonicField wmm2025(const std::string& wmm_cof_file, double decimal_year) {
+  const std::string& file = wmm_cof_file;
+  std::ifstream in(file);
+  if (!in) fail(file, 0, "cannot open the WMM coefficient file");
+
+  std::string text;
+  double epoch = 0.0;
+  {
+    std::string token;
+    std::istringstream words;
+    if (std::getline(in, text)) words.str(text);
+    if (!(words >> token) || !parseNumber(token, epoch)) fail(file, 1, "header must start with the epoch, e.g. 2025.0");
+  }
+  GaussCoefficients c;
+  std::array<std::array<bool, kMaxDegree + 1>, kMaxDegree + 1> seen[2] = {};
+  int degree = 0;
+  bool closed = false;
+  for (int line = 2; !closed && std::getline(in, text); ++line) {
+    if (text.rfind("9999", 0) == 0) {
+      closed = true;
+      continue;
+    }
+    std::istringstream words(text);
+    int n = 0;
+    int m = 0;
+    readDegreeOrder(words, 'g', file, line, n, m);
+    if (seen[0][n][m]) fail(file, line, "second row for n = " + std::to_string(n) + ", m = " + std::to_string(m));
+    seen[0][n][m] = true;
+    seen[1][n][m] = m > 0;
+    std::array<double, 4> v{};  // g, h, ġ, ḣ
+    std::string token;
+    for (double& value : v) {
+      if (!(words >> token)) fail(file, line, "expected n m g h gdot hdot");
+      if (!parseNumber(token, value)) fail(file, line, "\"" + token + "\" is not a number");
+    }
+    if (words >> token) fail(file, line, "unexpected column after n m g h gdot hdot: " + token);
+    c.g_nT[n][m] = v[0] + (decimal_year - epoch) * v[2];
+    c.h_nT[n][m] = v[1] + (decimal_year - epoch) * v[3];
+    c.g_dot_nT_yr[n][m] = v[2];
+    c.h_dot_nT_yr[n][m] = v[3];
+    degree = std::max(degree, n);
+  }
+  if (!closed) fail(file, 0, "no closing line of 9s (file cut short?)");
+  requireComplete(seen, degree, file);
+  requireYear(decimal_year, epoch, epoch + kPredictionSpan_yr, file);
+  c.degree = degree;
+  c.decimal_year = decimal_year;
+  return SphericalHarmonicField(c);
+}
+
+}  // namespace flatsat::sim

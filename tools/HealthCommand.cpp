@@ -1,0 +1,182 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "tools/HealthCommand.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+
+#include "bus/Stamp.hpp"
+#include "tools/ToolBus.hpp"
+
+namespace flatsat::tools {
+
+namespace {
+
+using HealthDef = std::remove_cvref_t<decltype(bus::topics::kHealth)>;
+
+struct HealthOptions {
+  bool once = false;
+  double wait_s = 8.0;
+  bool json = false;
+  int domain = -1;
+};
+
+struct Entry {
+  msg::Health health;
+  Guid writer;
+};
+
+/// Deadline misses of a paced rig, when the Health type carries them.
+template <class H>
+std::uint64_t overruns(const H& h) {
+  if constexpr (requires { h.overruns(); }) {
+    return h.overruns();
+  } else {
+    return 0;
+  }
+}
+template <class H>
+std::uint64_t staleInputs(const H& h) {
+  if constexpr (requires { h.stale_inputs(); }) {
+    return h.stale_inputs();
+  } else {
+    return 0;
+  }
+}
+
+double ageSeconds(const msg::Health& h) {
+  const auto now_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(
+                          std::chrono::system_clock::now().time_since_epoch())
+                          .count();
+  return static_cast<double>(now_ns - static_cast<std::int64_t>(h.wall_time_ns())) * 1e-9;
+}
+
+nlohmann::ordered_json table(const std::map<std::string, Entry>& entries, const ToolBus& tool_bus) {
+  const auto participants = tool_bus.participants();
+  auto rows = nlohmann::ordered_json::array();
+  for (const auto& [name, e] : entries) {
+    const auto p = participants.find(e.writer.guidPrefix);
+    rows.push_back({{"component", name},
+                    {"state", msg::toJson(e.health.state())},
+                    {"steps_done", e.health.steps_done()},
+                    {"overruns", overruns(e.health)},
+                    {"stale_inputs", staleInputs(e.health)},
+                    {"age_s", ageSeconds(e.health)},
+                    {"alive", p != participants.end() && p->second.alive},
+                    {"message", bus::text(e.health.message())}});
+  }
+  return rows;
+}
+
+void printTable(const nlohmann::ordered_json& rows, std::uint32_t domain) {
+  std::printf("%-22s %-14s %10s %9s %6s %8s  %s\n", "COMPONENT", "STATE", "STEPS", "OVERRUNS",
+              "STALE", "AGE [s]", "MESSAGE");
+  for (const auto& r : rows) {
+    std::string state = r["state"].is_string() ? r["state"].get<std::string>() : r["state"].dump();
+    if (!r["alive"].get<bool>()) state += " (gone)";
+    std::printf("%-22s %-14s %10llu %9llu %6llu %8.1f  %s\n",
+                r["component"].get<std::string>().c_str(), state.c_str(),
+                static_cast<unsigned long long>(r["steps_done"].get<std::uint64_t>()),
+                static_cast<unsigned long long>(r["overruns"].get<std::uint64_t>()),
+                static_cast<unsigned long long>(r["stale_inputs"].get<std::uint64_t>()),
+                r["age_s"].get<double>(), r["message"].get<std::string>().c_str());
+  }
+  std::printf("%zu components on domain %u\n", rows.size(), domain);
+  std::fflush(stdout);
+}
+
+int health(const HealthOptions& o) {
+  ToolBus tool_bus("health", o.domain);
+  std::mutex mutex;
+  std::map<std::string, Entry> entries;  // by component (header.source)
+  Tap<HealthDef> tap(tool_bus, bus::topics::kHealth, [&](const msg::Health& h, const Arrival& a) {
+    std::lock_guard lock(mutex);
+    entries[bus::text(h.header().source())] = {h, a.writer};
+  });
+  const auto snapshot = [&] {
+    std::lock_guard lock(mutex);
+    return table(entries, tool_bus);
+  };
+
+  if (o.once) {
+    // Each component's health writer keeps its last sample for late joiners:
+    // done once every discovered health writer delivered, after the time
+    // discovery needs to find every component (at most --wait).
+    const auto start = Clock::now();
+    for (;;) {
+      if (!sleepUnlessInterrupted(0.1)) break;
+      const double waited = std::chrono::duration<double>(Clock::now() - start).count();
+      if (waited >= o.wait_s) break;
+      if (waited < std::min(kDiscoverySeconds, o.wait_s)) continue;
+      std::lock_guard lock(mutex);
+      bool missing = false;
+      for (const auto& w : tool_bus.writers()) {
+        if (!w.alive || w.topic != bus::topics::kHealth.name) continue;
+        missing |= std::none_of(entries.begin(), entries.end(),
+                                [&](const auto& e) { return e.second.writer == w.guid; });
+      }
+      if (!missing && !entries.empty()) break;
+    }
+    const auto rows = snapshot();
+    if (o.json) {
+      std::cout << rows.dump(2) << "\n";
+    } else {
+      printTable(rows, tool_bus.domain());
+    }
+    if (rows.empty()) {
+      std::cerr << "flatsat health: no component reported on domain " << tool_bus.domain() << "\n";
+      return 1;
+    }
+    return 0;
+  }
+
+  const bool tty = ::isatty(STDOUT_FILENO) != 0;
+  while (sleepUnlessInterrupted(1.0)) {
+    const auto rows = snapshot();
+    if (o.json) {
+      std::cout << rows.dump() << "\n" << std::flush;
+      continue;
+    }
+    if (tty) std::printf("\033[H\033[2J");  // redraw in place
+    printTable(rows, tool_bus.domain());
+    if (!tty) std::printf("\n");
+  }
+  return 0;
+}
+
+}  // namespace
+
+CLI::App* addHealthCommand(CLI::App& app, int& exit_code) {
+  auto options = std::make_shared<HealthOptions>();
+  auto* cmd = app.add_subcommand(
+      "health", "a live table of the rig's components: state, steps, message, age");
+  cmd->add_flag("--once", options->once, "print one table and exit (tests, CI)");
+  cmd->add_option("--wait", options->wait_s,
+                  "--once: wait at most S seconds for every component's health [s] (default 8; "
+                  "discovery alone takes up to 4)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_flag("--json", options->json, "JSON rows instead of a table (one line per refresh)");
+  addDomainOption(*cmd, options->domain);
+  cmd->footer(
+      "Refreshed every second until Ctrl-C. AGE is the time since the component\n"
+      "stamped its last health (wall clock; a running component reports every second);\n"
+      "OVERRUNS and STALE count the paced steps it skipped or took with an old input.\n"
+      "(gone): the component's participant left the bus.");
+  cmd->callback([options, &exit_code] {
+    try {
+      exit_code = health(*options);
+    } catch (const std::exception& e) {
+      std::cerr << "error: " << e.what() << "\n";
+      exit_code = 1;
+    }
+  });
+  return cmd;
+}
+
+}  // namespace flatsat::tools

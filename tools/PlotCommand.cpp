@@ -1,0 +1,296 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "tools/PlotCommand.hpp"
+
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <cstring>
+#include <functional>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include "tools/PlotData.hpp"
+
+extern char** environ;
+
+namespace fs = std::filesystem;
+
+namespace flatsat::tools {
+
+namespace {
+
+struct PlotOptions {
+  std::string recording;
+  std::string out;       ///< empty: <recording's folder>/plots
+  std::string scenario;  ///< empty: scenario.yaml next to the recording, if there
+  std::size_t max_points = 20000;
+};
+
+/// gnuplot single-quoted string: a quote is doubled.
+std::string quoted(const fs::path& path) {
+  std::string out = "'";
+  for (char c : path.string()) out += c == '\'' ? std::string("''") : std::string(1, c);
+  return out + "'";
+}
+
+/// Writes every `stride`-th row (and the last) of a series; a row writer
+/// returns false to break the line there (a blank line for gnuplot).
+template <class Row>
+void writeData(const fs::path& file, const std::vector<Row>& rows, std::size_t max_points,
+               const std::function<void(std::FILE*, const Row&)>& write) {
+  std::FILE* f = std::fopen(file.c_str(), "w");
+  if (f == nullptr) throw std::runtime_error("cannot write " + file.string());
+  const std::size_t stride = std::max<std::size_t>(1, (rows.size() + max_points - 1) / max_points);
+  for (std::size_t i = 0; i < rows.size(); i += stride) write(f, rows[i]);
+  if (!rows.empty() && (rows.size() - 1) % stride != 0) write(f, rows.back());
+  std::fclose(f);
+}
+
+struct TimeAxis {
+  double scale;  ///< [unit/s]
+  std::string label;
+};
+
+TimeAxis timeAxis(const PlotData& d) {
+  const double end = d.truth.empty() ? 0.0 : d.truth.back().t_s;
+  if (end > 3 * 3600) return {1.0 / 3600, "simulated time [h]"};
+  if (end > 1200) return {1.0 / 60, "simulated time [min]"};
+  return {1.0, "simulated time [s]"};
+}
+
+/// Data files (gnuplot/*.dat) and the script that turns them into PNGs.
+/// Returns the PNG names the script writes.
+std::vector<std::string> writeScript(const PlotData& d, const PlotContext& c, const fs::path& out,
+                                     std::size_t max_points, const fs::path& script) {
+  const fs::path data = out / "gnuplot";
+  fs::create_directories(data);
+  const TimeAxis ta = timeAxis(d);
+  const auto v3 = [](std::FILE* f, const Eigen::Vector3d& v) {
+    std::fprintf(f, " %.7g %.7g %.7g", v.x(), v.y(), v.z());
+  };
+  writeData<TruthRow>(data / "truth.dat", d.truth, max_points, [&](std::FILE* f, const TruthRow& r) {
+    std::fprintf(f, "%.7g %.7g", r.t_s * ta.scale, std::max(r.pointing_error_deg, 1e-6));
+    v3(f, r.w_B_deg_s);
+    for (double w : r.wheel_rad_s) std::fprintf(f, " %.7g", w);
+    std::fprintf(f, " %.7g", r.h_wheels_Nms);
+    v3(f, r.b_B_uT);
+    v3(f, r.dipole_B_Am2);
+    std::fprintf(f, " %.4g\n", r.illumination);
+  });
+  writeData<MagnetometerRow>(data / "magnetometer.dat", d.magnetometer, max_points,
+                             [&](std::FILE* f, const MagnetometerRow& r) {
+                               std::fprintf(f, "%.7g", r.t_s * ta.scale);
+                               v3(f, r.b_B_uT);
+                               std::fprintf(f, "\n");
+                             });
+  writeData<EstimateRow>(data / "estimate.dat", d.estimate, max_points,
+                         [&](std::FILE* f, const EstimateRow& r) {
+                           std::fprintf(f, "%.7g %.7g", r.t_s * ta.scale, std::max(r.error_deg, 1e-7));
+                           v3(f, r.error_B_deg);
+                           v3(f, r.b_B_uT);
+                           std::fprintf(f, "\n");
+                         });
+  writeData<DipoleRow>(data / "dipole.dat", d.dipole, max_points, [&](std::FILE* f, const DipoleRow& r) {
+    std::fprintf(f, "%.7g", r.t_s * ta.scale);
+    v3(f, r.m_B_Am2);
+    const Eigen::Vector3d duty =
+        c.max_dipole_Am2 ? Eigen::Vector3d(r.m_B_Am2.cwiseAbs().cwiseQuotient(*c.max_dipole_Am2) * 100)
+                         : Eigen::Vector3d::Zero();
+    v3(f, duty);
+    std::fprintf(f, " %d\n", r.active ? 1 : 0);
+  });
+  // Ground track: one file per lighting, the line broken at the date line and
+  // where the lighting changes.
+  for (const bool sunlit : {true, false}) {
+    std::FILE* f = std::fopen((data / (sunlit ? "track_sun.dat" : "track_eclipse.dat")).c_str(), "w");
+    if (f == nullptr) throw std::runtime_error("cannot write " + data.string());
+    const std::size_t stride = std::max<std::size_t>(1, d.truth.size() / max_points);
+    bool drawing = false;
+    double last_lon = 0;
+    for (std::size_t i = 0; i < d.truth.size() && c.epoch; i += stride) {
+      const auto& r = d.truth[i];
+      const bool in = (r.illumination >= 0.5) == sunlit;
+      if (drawing && (!in || std::abs(r.lon_deg - last_lon) > 180)) std::fprintf(f, "\n");
+      if (in) std::fprintf(f, "%.5f %.5f\n", r.lon_deg, r.lat_deg);
+      drawing = in;
+      last_lon = r.lon_deg;
+    }
+    std::fclose(f);
+  }
+
+  std::ofstream s(script);
+  std::vector<std::string> pngs;
+  const auto dat = [&](const char* name) { return quoted(data / name); };
+  const auto begin = [&](const std::string& png, const std::string& title) {
+    pngs.push_back(png);
+    s << "\nreset\nset output " << quoted(out / png) << "\nset grid\nset key top right box opaque\n"
+      << "set xlabel '" << ta.label << "'\nset title \"" << title << "\"\n";
+  };
+  s << "# Generated by flatsat plot from " << d.truth.size() << " truth samples; rerun: gnuplot "
+    << script.filename().string() << "\nset encoding utf8\n"
+    << "set terminal pngcairo size 1280,800 noenhanced font 'DejaVu Sans,11' linewidth 1.5\n";
+  const std::string axis = [&] {
+    std::ostringstream text;
+    text << "[" << c.pointing_axis_B.transpose().format(Eigen::IOFormat(3, 0, " ")) << "]";
+    return text.str();
+  }();
+  const double acq = c.acquisition_s.value_or(-1) * ta.scale;
+
+  begin("pointing_error.png", "Pointing error: angle between body axis " + axis + " and the Sun (truth)");
+  s << "set ylabel 'pointing error [deg]'\nset logscale y\n";
+  if (acq > 0) s << "set arrow from " << acq << ", graph 0 to " << acq << ", graph 1 nohead dt 2 lc rgb 'gray30'\n";
+  s << "plot " << dat("truth.dat") << " using 1:2 with lines lc rgb '#1f77b4' title 'pointing error'";
+  if (acq > 0) s << ", NaN with lines dt 2 lc rgb 'gray30' title 'metrics start (acquisition_s)'";
+  s << "\n";
+
+  begin("body_rates.png", "Body rates w.r.t. inertial, body axes (truth)");
+  s << "set ylabel 'body rate [deg/s]'\nplot " << dat("truth.dat") << " using 1:3 with lines title 'ω x', '' using 1:4 with lines title 'ω y', '' using 1:5 with lines title 'ω z'\n";
+
+  begin("wheels.png", "Reaction wheels (truth)");
+  s << "set multiplot layout 2,1 title 'Reaction wheels (truth)'\nset title 'Wheel speeds relative to the body'\n"
+    << "set ylabel 'wheel speed [rad/s]'\nplot ";
+  for (std::size_t i = 0; i < std::max<std::size_t>(d.wheel_count, 1); ++i) {
+    s << (i ? ", '' " : dat("truth.dat")) << " using 1:" << 6 + i << " with lines title 'wheel " << i + 1 << "'";
+  }
+  s << "\nset title 'Angular momentum stored in the wheels'\nset ylabel '|h wheels| [N·m·s]'\nplot "
+    << dat("truth.dat") << " using 1:10 with lines lw 2 title '|h| stored'";
+  if (c.wheel_capacity_Nms) s << ", " << *c.wheel_capacity_Nms << " with lines dt 2 lc rgb 'red' title 'one wheel capacity'";
+  s << "\nunset multiplot\n";
+
+  if (!d.dipole.empty()) {
+    begin("dipole.png", "Magnetorquer dipole command (unloading controller)");
+    s << "set multiplot layout 2,1 title 'Magnetic unloading: dipole command and coil duty'\n"
+      << "set title 'Commanded dipole, body axes'\nset ylabel 'dipole [A·m²]'\nplot " << dat("dipole.dat")
+      << " using 1:2 with steps title 'm x', '' using 1:3 with steps title 'm y', '' using 1:4 with steps title 'm z'\n";
+    if (c.max_dipole_Am2) {
+      s << "set title 'Coil duty: |m| over the coil limit'\nset ylabel 'duty [%]'\nset yrange [0:105]\nplot "
+        << dat("dipole.dat") << " using 1:5 with steps title 'coil x', '' using 1:6 with steps title 'coil y', '' using 1:7 with steps title 'coil z'\n";
+    } else {
+      s << "set title 'Unloading engaged'\nset ylabel 'active [0/1]'\nset yrange [-0.1:1.1]\nplot "
+        << dat("dipole.dat") << " using 1:8 with steps title 'active'\n";
+    }
+    s << "unset multiplot\n";
+  }
+
+  begin("field.png", "Geomagnetic field, body axes");
+  s << "set multiplot layout 3,1 title 'Geomagnetic field in body axes: true, measured, seen through the estimate'\n";
+  for (int axis_index = 0; axis_index < 3; ++axis_index) {
+    const char name = static_cast<char>('x' + axis_index);
+    s << "set title 'body " << name << "'\nset ylabel 'B " << name << " [µT]'\nplot " << dat("truth.dat")
+      << " using 1:" << 11 + axis_index << " with lines lw 2 title 'true'";
+    if (!d.magnetometer.empty()) s << ", " << dat("magnetometer.dat") << " using 1:" << 2 + axis_index << " with lines title 'measured (magnetometer)'";
+    if (!d.estimate.empty()) s << ", " << dat("estimate.dat") << " using 1:" << 6 + axis_index << " with lines dt 2 title 'true inertial field, estimated attitude'";
+    s << "\n";
+  }
+  s << "unset multiplot\n";
+
+  if (!d.estimate.empty()) {
+    begin("estimator_error.png", "Attitude estimation error (estimate vs truth)");
+    s << "set multiplot layout 2,1 title 'Attitude estimation error (estimate vs truth)'\n"
+      << "set title 'Rotation angle between estimated and true attitude'\nset ylabel 'error angle [deg]'\nset logscale y\nplot "
+      << dat("estimate.dat") << " using 1:2 with lines title 'error angle'\nunset logscale y\n"
+      << "set title 'Small-angle error per body axis'\nset ylabel 'error [deg]'\nplot " << dat("estimate.dat")
+      << " using 1:3 with lines title 'about x', '' using 1:4 with lines title 'about y', '' using 1:5 with lines title 'about z'\n"
+      << "unset multiplot\n";
+  }
+
+  if (c.epoch && !d.truth.empty()) {
+    begin("ground_track.png", "Ground track (GMST rotation, spherical Earth)");
+    s << "set xlabel 'longitude [deg]'\nset ylabel 'geocentric latitude [deg]'\nset xrange [-180:180]\nset yrange [-90:90]\n"
+      << "set xtics 30\nset ytics 30\nset size ratio 0.5\nset key outside bottom center horizontal box\n"
+      << "plot " << dat("track_sun.dat") << " with lines lw 2 lc rgb '#ff9900' title 'sunlit', "
+      << dat("track_eclipse.dat") << " with lines lw 2 lc rgb '#1f3b73' title 'eclipse', '-' with points pt 7 ps 2 lc rgb 'black' title 'start'\n"
+      << d.truth.front().lon_deg << " " << d.truth.front().lat_deg << "\ne\n";
+  }
+  if (!s.flush()) throw std::runtime_error("cannot write " + script.string());
+  return pngs;
+}
+
+int runGnuplot(const fs::path& script) {
+  const std::string program = "gnuplot";
+  std::string path = script.string();
+  char* argv[] = {const_cast<char*>(program.c_str()), path.data(), nullptr};
+  pid_t pid = 0;
+  if (const int rc = ::posix_spawnp(&pid, program.c_str(), nullptr, nullptr, argv, environ); rc != 0) {
+    std::cerr << "error: cannot run gnuplot (" << std::strerror(rc)
+              << "); install it: apt-get install gnuplot-nox\n";
+    return 1;
+  }
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    std::cerr << "error: gnuplot failed on " << script.string() << "\n";
+    return 1;
+  }
+  return 0;
+}
+
+int plot(const PlotOptions& o) {
+  if (!fs::is_regular_file(o.recording)) {
+    std::cerr << "error: " << o.recording << ": no such recording\n";
+    return 1;
+  }
+  const fs::path run_dir = fs::absolute(o.recording).parent_path();
+  const fs::path out = fs::absolute(o.out.empty() ? run_dir / "plots" : fs::path(o.out));
+  std::string scenario = o.scenario;
+  if (scenario.empty() && fs::exists(run_dir / "scenario.yaml")) scenario = (run_dir / "scenario.yaml").string();
+  PlotContext context;
+  try {
+    context = readPlotContext(scenario);
+  } catch (const std::exception& e) {
+    std::cerr << "flatsat plot: " << scenario << ": " << e.what() << "; plotting without it\n";
+  }
+  if (scenario.empty()) {
+    std::cerr << "flatsat plot: no scenario.yaml next to the recording: no ground track, no limits\n";
+  }
+  const PlotData data = readPlotData(o.recording, context);
+  if (data.truth.empty()) {
+    std::cerr << "error: " << o.recording << " holds no truth samples\n";
+    return 1;
+  }
+  fs::create_directories(out);
+  const fs::path script = out / "gnuplot" / "plots.gp";
+  const auto pngs = writeScript(data, context, out, o.max_points, script);
+  if (const int rc = runGnuplot(script); rc != 0) return rc;
+  for (const auto& png : pngs) {
+    if (!fs::exists(out / png) || fs::file_size(out / png) == 0) {
+      std::cerr << "error: gnuplot did not write " << (out / png).string() << "\n";
+      return 1;
+    }
+    std::cout << (out / png).string() << "\n";
+  }
+  return 0;
+}
+
+}  // namespace
+
+CLI::App* addPlotCommand(CLI::App& app, int& exit_code) {
+  auto options = std::make_shared<PlotOptions>();
+  auto* cmd = app.add_subcommand("plot", "draw a recording's review figures as PNG (gnuplot)");
+  cmd->add_option("recording", options->recording, "recording.sqlite of a run")->required();
+  cmd->add_option("-o,--out", options->out, "output folder (default: 'plots' next to the recording)");
+  cmd->add_option("--scenario", options->scenario,
+                  "the run's scenario (default: scenario.yaml next to the recording); gives the "
+                  "epoch (ground track), pointing axis, wheel and coil limits");
+  cmd->add_option("--max-points", options->max_points, "points per curve at most (default 20000)")
+      ->check(CLI::Range(100, 10000000));
+  cmd->footer(
+      "Writes pointing_error, body_rates, wheels, dipole, field, estimator_error and\n"
+      "ground_track .png; the data and the gnuplot script stay in <out>/gnuplot\n"
+      "(rerun: gnuplot <out>/gnuplot/plots.gp). Needs gnuplot (Debian: gnuplot-nox).");
+  cmd->callback([options, &exit_code] {
+    try {
+      exit_code = plot(*options);
+    } catch (const std::exception& e) {
+      std::cerr << "error: " << e.what() << "\n";
+      exit_code = 1;
+    }
+  });
+  return cmd;
+}
+
+}  // namespace flatsat::tools

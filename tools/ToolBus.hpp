@@ -1,0 +1,182 @@
+// SPDX-License-Identifier: Apache-2.0
+#pragma once
+// What the live operator tools (topics, echo, hz, health) share: a DDS
+// participant that joins any rig's domain and remembers what discovery saw,
+// and a typed reader ("tap") that hands over every sample with its writer
+// and arrival time. The tools know the topic registry, never the scenario.
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <fastdds/dds/domain/DomainParticipantListener.hpp>
+#include <fastdds/dds/subscriber/DataReader.hpp>
+#include <fastdds/dds/subscriber/DataReaderListener.hpp>
+#include <fastdds/dds/subscriber/SampleInfo.hpp>
+#include <fastdds/dds/subscriber/qos/DataReaderQos.hpp>
+
+#include "bus/Bus.hpp"
+#include "bus/Topics.hpp"
+#include "msg/MsgJson.hpp"
+
+namespace flatsat::tools {
+
+using Clock = std::chrono::steady_clock;
+using Guid = eprosima::fastrtps::rtps::GUID_t;
+using GuidPrefix = eprosima::fastrtps::rtps::GuidPrefix_t;
+
+/// [s] How long a tool needs to see the whole rig. A component learns of a
+/// new participant from that participant's announcements but answers only
+/// with its own periodic one (Fast DDS's announcement period, 3 s by default,
+/// which bus::Bus keeps), so a tool finds each component 0..3 s after it
+/// joined; endpoint matching and transient-local history follow at once.
+inline constexpr double kDiscoverySeconds = 4.0;
+
+/// Adds `--domain N` to a tool; unset (-1), the domain is FLATSAT_DOMAIN,
+/// else the default scenario's.
+void addDomainOption(CLI::App& command, int& domain);
+std::uint32_t resolveDomain(int domain_option);
+
+/// A writer that discovery announced.
+struct WriterInfo {
+  std::string topic;
+  std::string type;
+  Guid guid;
+  std::int32_t ownership_strength = 0;
+  bool alive = true;  ///< false once the writer was removed
+};
+
+/// A participant that discovery announced.
+struct ParticipantInfo {
+  std::string name;   ///< the rig names each component's participant after the component
+  bool alive = true;  ///< false once it left or was dropped
+};
+
+/// A tool's participant: loopback like every component, and a record of
+/// discovery from the first announcement on (the participant is enabled
+/// only after its listener is in place, so nothing is missed).
+class ToolBus : private eprosima::fastdds::dds::DomainParticipantListener {
+ public:
+  ToolBus(const std::string& tool_name, int domain_option);
+  ~ToolBus() override;
+  ToolBus(const ToolBus&) = delete;
+  ToolBus& operator=(const ToolBus&) = delete;
+
+  bus::Bus& bus() { return *bus_; }
+  std::uint32_t domain() const { return domain_; }
+  /// Remote participants by GUID prefix (this tool's own excluded).
+  std::map<GuidPrefix, ParticipantInfo> participants() const;
+  std::vector<WriterInfo> writers() const;
+  /// The participant name of a writer's participant; "" when unknown.
+  std::string participantName(const GuidPrefix& prefix) const;
+
+ private:
+  void on_participant_discovery(eprosima::fastdds::dds::DomainParticipant* participant,
+                                eprosima::fastrtps::rtps::ParticipantDiscoveryInfo&& info) override;
+  void on_publisher_discovery(eprosima::fastdds::dds::DomainParticipant* participant,
+                              eprosima::fastrtps::rtps::WriterDiscoveryInfo&& info) override;
+
+  std::uint32_t domain_;
+  mutable std::mutex mutex_;
+  GuidPrefix own_prefix_;
+  std::map<GuidPrefix, ParticipantInfo> participants_;
+  std::map<Guid, WriterInfo> writers_;
+  std::unique_ptr<bus::Bus> bus_;  // last: destroyed first, before what its callbacks touch
+};
+
+/// When and from whom a sample came.
+struct Arrival {
+  Clock::time_point wall;  ///< when the tool took it
+  Guid writer;
+  /// Written before the tool subscribed: a transient-local topic's history,
+  /// not part of the live stream (rates skip it).
+  bool historical = false;
+};
+
+/// Reader QoS of a tool: the registry's preset, except that stepped topics
+/// are read volatile and best-effort. A tool watches the live stream: the
+/// writers' history would replay old steps and skew rates, and a
+/// best-effort reader never acknowledges, so attaching a tool adds no
+/// protocol work to a rig in lockstep. State and command topics keep their
+/// transient-local history: the last health of every component is the point.
+eprosima::fastdds::dds::DataReaderQos tapQos(bus::QosKind kind);
+
+/// A typed reader of one registry topic for tools; the callback runs on a
+/// Fast DDS thread.
+template <class Def>
+class Tap : private eprosima::fastdds::dds::DataReaderListener {
+ public:
+  using Sample = typename Def::Type;
+  using Callback = std::function<void(const Sample&, const Arrival&)>;
+
+  Tap(ToolBus& tool_bus, const Def& def, Callback on_sample)
+      : on_sample_(std::move(on_sample)),
+        subscriber_(tool_bus.bus().subscriber()),
+        subscribed_ns_(std::chrono::duration_cast<std::chrono::nanoseconds>(
+                           std::chrono::system_clock::now().time_since_epoch())
+                           .count()) {
+    auto& topic = tool_bus.bus().topic(std::string(def.name), new typename Def::PubSubType());
+    reader_ = subscriber_.create_datareader(&topic, tapQos(def.qos), this);
+    if (reader_ == nullptr) {
+      throw std::runtime_error("could not create a reader on " + std::string(def.name));
+    }
+  }
+  ~Tap() override {
+    reader_->set_listener(nullptr);
+    subscriber_.delete_datareader(reader_);
+  }
+  Tap(const Tap&) = delete;
+  Tap& operator=(const Tap&) = delete;
+
+ private:
+  void on_data_available(eprosima::fastdds::dds::DataReader* reader) override {
+    Sample sample;
+    eprosima::fastdds::dds::SampleInfo info;
+    while (reader->take_next_sample(&sample, &info) == ReturnCode_t::RETCODE_OK) {
+      if (!info.valid_data) continue;
+      on_sample_(sample, {Clock::now(), info.sample_identity.writer_guid(),
+                          info.source_timestamp.to_ns() < subscribed_ns_});
+    }
+  }
+
+  Callback on_sample_;
+  eprosima::fastdds::dds::Subscriber& subscriber_;
+  std::int64_t subscribed_ns_;  ///< [ns] system clock, as the writers' source timestamps
+  eprosima::fastdds::dds::DataReader* reader_ = nullptr;
+};
+
+/// "truth" for "flatsat/truth".
+std::string_view shortTopicName(std::string_view topic);
+/// Every registry topic, comma separated (for error messages).
+std::string registryTopicNames();
+
+/// Calls f(def) for the registry topic named `name` (full or short name);
+/// false when there is none.
+template <class F>
+bool withTopic(std::string_view name, F&& f) {
+  bool found = false;
+  bus::forEachTopic([&](const auto& def) {
+    if (!found && (def.name == name || shortTopicName(def.name) == name)) {
+      found = true;
+      f(def);
+    }
+  });
+  return found;
+}
+
+/// Waits `seconds` of wall time, returning early (false) on SIGINT/SIGTERM.
+bool sleepUnlessInterrupted(double seconds);
+
+/// Flattens a JSON sample into (path, leaf) pairs in order: objects by
+/// ".key", arrays by "[i]"; the paths are the generated leafFields<T>().
+void flattenJson(const nlohmann::ordered_json& value, const std::string& path,
+                 std::vector<std::pair<std::string, const nlohmann::ordered_json*>>& out);
+
+}  // namespace flatsat::tools
