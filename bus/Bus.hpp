@@ -11,6 +11,8 @@
 #include <fastdds/dds/subscriber/Subscriber.hpp>
 #include <fastdds/dds/topic/Topic.hpp>
 
+#include "bus/Qos.hpp"
+
 namespace flatsat::bus {
 
 /// Which network a participant may use.
@@ -23,6 +25,7 @@ struct BusOptions {
   std::uint32_t domain_id = 0;  ///< [-] DDS domain, 0..232 (the port formula caps it)
   NetworkProfile profile = NetworkProfile::kLoopback;
   std::string participant_name = "flatsat";
+  QosTuning tuning;  ///< applied to every endpoint of this participant
 };
 
 /// Domain id for a process: FLATSAT_DOMAIN overrides the scenario's value.
@@ -43,6 +46,7 @@ class Bus {
   eprosima::fastdds::dds::Publisher& publisher() { return *publisher_; }
   eprosima::fastdds::dds::Subscriber& subscriber() { return *subscriber_; }
   std::uint32_t domainId() const { return options_.domain_id; }
+  const QosTuning& tuning() const { return options_.tuning; }
 
   /// The topic of that name, registering its type on first use.
   eprosima::fastdds::dds::Topic& topic(const std::string& name,

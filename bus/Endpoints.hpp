@@ -23,7 +23,7 @@ class Writer {
 
   Writer(Bus& bus, const Def& def) : name_(def.name), publisher_(bus.publisher()) {
     auto& topic = bus.topic(std::string(def.name), new typename Def::PubSubType());
-    writer_ = publisher_.create_datawriter(&topic, writerQos(def.qos));
+    writer_ = publisher_.create_datawriter(&topic, writerQos(def.qos, bus.tuning()));
     if (writer_ == nullptr) throw std::runtime_error("could not create a writer on " + name_);
   }
   ~Writer() { publisher_.delete_datawriter(writer_); }
@@ -67,7 +67,7 @@ class Reader : private eprosima::fastdds::dds::DataReaderListener {
   Reader(Bus& bus, const Def& def, Callback on_sample)
       : name_(def.name), on_sample_(std::move(on_sample)), subscriber_(bus.subscriber()) {
     auto& topic = bus.topic(std::string(def.name), new typename Def::PubSubType());
-    reader_ = subscriber_.create_datareader(&topic, readerQos(def.qos), this);
+    reader_ = subscriber_.create_datareader(&topic, readerQos(def.qos, bus.tuning()), this);
     if (reader_ == nullptr) throw std::runtime_error("could not create a reader on " + name_);
   }
   ~Reader() {

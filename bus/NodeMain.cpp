@@ -38,4 +38,12 @@ NodeOptions nodeOptions(const Scenario& scenario, const std::string& name) {
   return options;
 }
 
+QosTuning qosTuning(const Scenario& scenario, std::int32_t ownership_strength) {
+  QosTuning tuning;
+  tuning.watch_liveliness = scenario.pacing == Pacing::kPaced;
+  tuning.lease = std::chrono::milliseconds(std::llround(scenario.liveliness_lease_s * 1e3));
+  tuning.ownership_strength = ownership_strength;
+  return tuning;
+}
+
 }  // namespace flatsat::bus

@@ -26,6 +26,8 @@ NodeArgs parseNodeArgs(int argc, char** argv, const std::string& default_name);
 
 /// Everything a node needs from the scenario besides its own parameters.
 NodeOptions nodeOptions(const Scenario& scenario, const std::string& name);
+/// The participant's QoS tuning in this scenario, at the given ownership strength.
+QosTuning qosTuning(const Scenario& scenario, std::int32_t ownership_strength);
 
 /// Loads the scenario, reads the parameters with `read(scenario, name,
 /// problems)`, builds the node with `make(bus, options, params)` and runs it.
@@ -42,7 +44,8 @@ int runNode(int argc, char** argv, const std::string& default_name, Read&& read,
       spdlog::error("{}: invalid parameters:\n{}", args.name, problems.joined());
       return 2;
     }
-    Bus bus({domainFromEnvironment(scenario.domain_id), profileFromEnvironment(), args.name});
+    Bus bus({domainFromEnvironment(scenario.domain_id), profileFromEnvironment(), args.name,
+             qosTuning(scenario, kEmulatorStrength)});
     auto node = make(bus, nodeOptions(scenario, args.name), params);
     node->run();
     return 0;

@@ -38,6 +38,12 @@ constexpr UnitDef kUnits[] = {
     {"1/s^2", "frequency2", 1.0},
     {"N m/rad", "stiffness", 1.0},
     {"N m s/rad", "damping", 1.0},
+    {"m^2", "area", 1.0},         {"cm^2", "area", 1e-4},
+    {"N", "force", 1.0},          {"mN", "force", 1e-3},       {"uN", "force", 1e-6},
+    {"N s", "impulse", 1.0},      {"mN s", "impulse", 1e-3},   {"uN s", "impulse", 1e-6},
+    {"kg", "mass", 1.0},          {"g", "mass", 1e-3},
+    {"kg/m^3", "density", 1.0},   {"g/cm^3", "density", 1e3},
+    {"W/m^2", "irradiance", 1.0},
 };
 
 const UnitDef* findUnit(std::string_view name) {

@@ -18,17 +18,36 @@ void common(Qos& qos, int depth) {
   qos.history().depth = depth;
 }
 
+eprosima::fastrtps::Duration_t duration(std::chrono::milliseconds ms) {
+  return {static_cast<int32_t>(ms.count() / 1000),
+          static_cast<uint32_t>((ms.count() % 1000) * 1'000'000)};
+}
+
+template <class Qos>
+void stepped(Qos& qos, const QosTuning& tuning) {
+  qos.ownership().kind = dds::EXCLUSIVE_OWNERSHIP_QOS;
+  if (!tuning.watch_liveliness) return;
+  qos.deadline().period = duration(tuning.lease);
+  qos.liveliness().kind = dds::MANUAL_BY_TOPIC_LIVELINESS_QOS;
+  qos.liveliness().lease_duration = duration(tuning.lease);
+}
+
 }  // namespace
 
-dds::DataWriterQos writerQos(QosKind kind) {
+dds::DataWriterQos writerQos(QosKind kind, const QosTuning& tuning) {
   dds::DataWriterQos qos;
   common(qos, kind == QosKind::kState ? 1 : kSteppedDepth);
+  if (kind == QosKind::kStepped) {
+    stepped(qos, tuning);
+    qos.ownership_strength().value = static_cast<uint32_t>(tuning.ownership_strength);
+  }
   return qos;
 }
 
-dds::DataReaderQos readerQos(QosKind kind) {
+dds::DataReaderQos readerQos(QosKind kind, const QosTuning& tuning) {
   dds::DataReaderQos qos;
   common(qos, kind == QosKind::kState ? kStateReaderDepth : kSteppedDepth);
+  if (kind == QosKind::kStepped) stepped(qos, tuning);
   return qos;
 }
 

@@ -1,5 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 #pragma once
+#include <chrono>
+#include <cstdint>
+
 #include <fastdds/dds/publisher/qos/DataWriterQos.hpp>
 #include <fastdds/dds/subscriber/qos/DataReaderQos.hpp>
 
@@ -8,21 +11,41 @@ namespace flatsat::bus {
 /// The rig's QoS presets; every endpoint takes one of these, nothing else
 /// sets QoS (style guide: "QoS in one place").
 enum class QosKind {
-  /// Stepped samples (truth, sensors, estimates, commands, grants, done):
-  /// reliable, transient-local so a reader that matches late still gets the
-  /// samples of the current step, keep-last deep enough for the largest
-  /// fan-in of one step (every component's StepDone on one topic).
+  /// Stepped data with one logical producer (truth, sensors, estimates,
+  /// commands): reliable, transient-local so a reader that matches late
+  /// still gets the current step, keep-last deep enough that no writer is
+  /// ever more than one step ahead of it, and EXCLUSIVE ownership so a
+  /// hardware bridge (high strength) overrides its emulator (low strength)
+  /// while it lives (architecture, "Hardware in the loop").
   kStepped,
+  /// The step protocol (grant, done): like kStepped but shared ownership,
+  /// since every component writes StepDone.
+  kProtocol,
   /// Latest state of each producer (health): reliable, transient-local,
   /// the writer keeps its last sample, readers keep one per producer.
   kState,
   /// Commands and events (faults, later modes and parameters): reliable,
   /// transient-local so a late joiner (recorder, tool) sees recent ones,
-  /// keep-last 64 on both sides.
+  /// keep-last 64 on both sides, shared ownership.
   kCommand,
 };
 
-eprosima::fastdds::dds::DataWriterQos writerQos(QosKind kind);
-eprosima::fastdds::dds::DataReaderQos readerQos(QosKind kind);
+/// What differs between the processes of a rig, set once per participant.
+struct QosTuning {
+  /// Paced rigs detect a silent producer: a deadline and MANUAL_BY_TOPIC
+  /// liveliness with `lease` on stepped topics, so exclusive ownership
+  /// falls back to the emulator within `lease` when a bridge dies (with
+  /// AUTOMATIC liveliness a killed writer would stay "alive" for the 20 s
+  /// participant lease).
+  bool watch_liveliness = false;
+  std::chrono::milliseconds lease{1000};  ///< [ms] deadline and liveliness lease, > 0
+  std::int32_t ownership_strength = 10;   ///< [-] emulators 10, hardware bridges 100
+};
+
+inline constexpr std::int32_t kEmulatorStrength = 10;
+inline constexpr std::int32_t kBridgeStrength = 100;
+
+eprosima::fastdds::dds::DataWriterQos writerQos(QosKind kind, const QosTuning& tuning = {});
+eprosima::fastdds::dds::DataReaderQos readerQos(QosKind kind, const QosTuning& tuning = {});
 
 }  // namespace flatsat::bus

@@ -22,7 +22,9 @@ ParamReader Scenario::componentParams(const std::string& component,
                                       ConfigProblems& problems) const {
   ParamReader reader(root["components"][component], file, "components." + component, problems);
   std::uint32_t divider = 1;
-  reader.read("rate_divider", divider);  // marks the key as known; checked at load
+  bool external = false;
+  reader.read("rate_divider", divider);  // marks the keys as known; checked at load
+  reader.read("external", external);
   return reader;
 }
 
@@ -75,6 +77,10 @@ Scenario loadScenario(const std::string& path) {
   if ((scenario.duration_s > 0) == (scenario.duration_orbits > 0)) {
     top.problem("", "give exactly one of duration_s or duration_orbits, > 0");
   }
+  top.read("liveliness_lease_s", scenario.liveliness_lease_s, "s");
+  if (!(scenario.liveliness_lease_s >= 0.05 && scenario.liveliness_lease_s <= 60.0)) {
+    top.problem("liveliness_lease_s", "must be in [50 ms, 60 s]");
+  }
   auto metrics = top.section("metrics");
   metrics.read("acquisition_s", scenario.acquisition_s, "s");
   if (scenario.acquisition_s < 0) metrics.problem("acquisition_s", "must be >= 0");
@@ -87,6 +93,9 @@ Scenario loadScenario(const std::string& path) {
     component.name = entry.first.as<std::string>();
     ParamReader reader(entry.second, path, "components." + component.name, problems);
     reader.read("rate_divider", component.rate_divider);
+    bool external = false;
+    reader.read("external", external);
+    component.launched = !external;
     if (component.rate_divider < 1 || component.rate_divider > 1000) {
       reader.problem("rate_divider", "must be in 1..1000");
     }

@@ -19,6 +19,9 @@ struct ScenarioError : std::runtime_error {
 struct ComponentEntry {
   std::string name;               ///< component name (= its kind for now)
   std::uint32_t rate_divider = 1; ///< [-] runs when step % divider == 0, 1..1000
+  /// false (`external: true`): runs elsewhere (another host, a real box);
+  /// the launcher does not start it but the rig waits for it on the bus.
+  bool launched = true;
 };
 
 /// The top level of a scenario file. Component parameters stay as YAML
@@ -34,6 +37,7 @@ struct Scenario {
   double duration_s = 0.0;         ///< [s] run length (or duration_orbits)
   double duration_orbits = 0.0;    ///< [-] run length in orbital periods
   double acquisition_s = 0.0;      ///< [s] metrics ignore pointing before this
+  double liveliness_lease_s = 1.0; ///< [s] paced: a silent producer is dead after this, 0.05..60
   std::vector<ComponentEntry> components;
 
   Schedule schedule() const;

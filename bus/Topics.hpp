@@ -29,9 +29,9 @@ struct TopicDef {
 namespace topics {
 using namespace flatsat::msg;
 inline constexpr TopicDef<StepGrant, StepGrantPubSubType> kStepGrant{
-    "flatsat/step_grant", QosKind::kStepped, "dynamics_server"};
+    "flatsat/step_grant", QosKind::kProtocol, "dynamics_server"};
 inline constexpr TopicDef<StepDone, StepDonePubSubType> kStepDone{
-    "flatsat/step_done", QosKind::kStepped, ""};
+    "flatsat/step_done", QosKind::kProtocol, ""};
 inline constexpr TopicDef<TruthState, TruthStatePubSubType> kTruth{
     "flatsat/truth", QosKind::kStepped, "dynamics_server"};
 inline constexpr TopicDef<MagnetometerReading, MagnetometerReadingPubSubType> kMagnetometer{

@@ -28,31 +28,14 @@ import os
 import re
 import sys
 
-PRIMITIVES = {
-    # IDL spelling -> (C++ type, JSON kind)
-    "boolean": ("bool", "bool"),
-    "char": ("char", "char"),
-    "wchar": ("wchar_t", "number"),
-    "octet": ("uint8_t", "number"),
-    "int8": ("int8_t", "number"),
-    "uint8": ("uint8_t", "number"),
-    "short": ("int16_t", "number"),
-    "int16": ("int16_t", "number"),
-    "unsigned short": ("uint16_t", "number"),
-    "uint16": ("uint16_t", "number"),
-    "long": ("int32_t", "number"),
-    "int32": ("int32_t", "number"),
-    "unsigned long": ("uint32_t", "number"),
-    "uint32": ("uint32_t", "number"),
-    "long long": ("int64_t", "number"),
-    "int64": ("int64_t", "number"),
-    "unsigned long long": ("uint64_t", "number"),
-    "uint64": ("uint64_t", "number"),
-    "float": ("float", "number"),
-    "double": ("double", "number"),
-    "long double": ("long double", "number"),
-    "string": ("std::string", "string"),
-}
+# IDL primitive type spellings; fastddsgen maps them to C++ arithmetic types
+# (string to std::string), which nlohmann::json takes as they are.
+PRIMITIVES = frozenset({
+    "boolean", "char", "wchar", "octet", "int8", "uint8", "short", "int16",
+    "unsigned short", "uint16", "long", "int32", "unsigned long", "uint32",
+    "long long", "int64", "unsigned long long", "uint64", "float", "double",
+    "long double", "string",
+})
 
 UNIT_COMMENT = re.compile(r"^\s*\[([^\]]*)\]\s*(.*)$")
 TOKEN = re.compile(
@@ -150,9 +133,9 @@ class Parser:
         if self.peek() is not None:
             raise IdlError(f"{self.peek().where()}: unexpected '{self.peek().text}'")
 
-    def peek(self, skip_comments=True):
+    def peek(self):
         j = self.i
-        while j < len(self.tokens) and skip_comments and self.tokens[j].kind == "comment":
+        while j < len(self.tokens) and self.tokens[j].kind == "comment":
             j += 1
         return self.tokens[j] if j < len(self.tokens) else None
 

@@ -7,6 +7,7 @@
 
 #include "sim/Constants.hpp"
 #include "sim/Disturbances.hpp"
+#include "sim/Geodetic.hpp"
 #include "sim/SunEphemeris.hpp"
 
 namespace flatsat::sim {
@@ -23,15 +24,37 @@ const DynamicsParams& validated(const DynamicsParams& params) {
   return params;
 }
 
+// The numerical orbit's drag takes the model's atmosphere.
+OrbitTrackParams orbitTrackParams(const DynamicsParams& params) {
+  OrbitTrackParams track = params.orbit_track;
+  if (params.atmosphere) track.forces.atmosphere = *params.atmosphere;
+  return track;
+}
+
+template <class T>
+T lerp(const T& a, const T& b, double s) {
+  return a + s * (b - a);
+}
+
+// Degree-truncated coefficients (the loaders give every degree of the model).
+GaussCoefficients truncated(GaussCoefficients coefficients, int degree) {
+  coefficients.degree = std::min(coefficients.degree, degree);
+  return coefficients;
+}
+
 }  // namespace
 
 DynamicsModel::DynamicsModel(const DynamicsParams& params)
     : params_(validated(params)),
-      orbit_(params.orbit),
+      orbit_(orbitTrackParams(params), params.orbit, params.epoch),
       body_(params.body),
-      field_(params.field),
+      dipole_(params.field),
       thrusters_(params.thrusters),
       jd_epoch_(julianDate(params.epoch)) {
+  if (params.field_model == FieldModel::kSphericalHarmonics) {
+    harmonics_.emplace(truncated(params.field_harmonics, params.field_degree));
+  }
+  if (params.atmosphere) atmosphere_.emplace(*params.atmosphere);
   if (params.flaps.fitted) flaps_.emplace(params.flaps);
   reset();
 }
@@ -39,6 +62,8 @@ DynamicsModel::DynamicsModel(const DynamicsParams& params)
 void DynamicsModel::reset() {
   t_ = 0;
   state_ = body_.makeState(params_.q0_NB, params_.w0_NB_B_rad_s, params_.wheel_speed0_rad_s);
+  orbit_.reset();
+  env_ = environmentAt(0.0);
   setFlaps(Eigen::Vector4d::Zero());
   updateTruth(Applied{}, 0.0);
 }
@@ -46,19 +71,30 @@ void DynamicsModel::reset() {
 void DynamicsModel::step(const ActuatorCommands& cmd, SimTime t_next) {
   if (t_next <= t_) return;
   const double t0_s = toSeconds(t_);
-  const double dt_s = toSeconds(t_next) - t0_s;
+  const double t1_s = toSeconds(t_next);
+  const double dt_s = t1_s - t0_s;
   Applied applied;
   applied.wheel_torque_Nm = body_.limitMotorTorque(state_, cmd.wheel_torque_Nm);
   applied.dipole_B_Am2 = clipDipole(cmd.dipole_B_Am2);
   applied.thrusters = thrusters_.fire(cmd.thruster_on_time_s, cmd.thruster_gimbal_rad, dt_s);
   if (flaps_) applied.flap_angle_rad = flaps_->limitAngles(cmd.flap_angle_rad);
   setFlaps(applied.flap_angle_rad);
+  const Environment next = environmentAt(t1_s);
   const auto external_torque = [&](double t_s, const RigidBodyState& x) -> Eigen::Vector3d {
-    return torquesAt(environmentAt(t_s), x.q_NB, applied.dipole_B_Am2).total_B_Nm() +
-           params_.disturbance_torque_B_Nm + applied.thrusters.torque_B_Nm;
+    const Environment env = interpolated(env_, next, (t_s - t0_s) / dt_s);
+    return torquesAt(env, x.q_NB, applied.dipole_B_Am2).total_B_Nm() + params_.disturbance_torque_B_Nm +
+           applied.thrusters.torque_B_Nm;
   };
+  const Eigen::Quaterniond q_start = state_.q_NB;
   state_ = body_.propagate(state_, t0_s, dt_s, params_.substeps, applied.wheel_torque_Nm, external_torque);
   t_ = t_next;
+  env_ = next;
+  const Eigen::Vector3d& f_B = applied.thrusters.force_B_N;
+  if (params_.orbit_track.propagator == OrbitPropagation::kNumerical && !f_B.isZero(0.0)) {
+    const Eigen::Vector3d a_N = (q_start * f_B + state_.q_NB * f_B) / (2.0 * params_.orbit_track.forces.mass_kg);
+    orbit_.kick(t1_s, 0.5 * dt_s * dt_s * a_N, dt_s * a_N);
+    env_ = environmentAt(t1_s);
+  }
   updateTruth(applied, dt_s / params_.substeps);
 }
 
@@ -66,19 +102,35 @@ void DynamicsModel::setFlaps(const Eigen::Vector4d& flap_angle_rad) {
   if (flaps_) flap_panels_ = flaps_->panels(flap_angle_rad);
 }
 
-DynamicsModel::Environment DynamicsModel::environmentAt(double t_s) const {
-  const KeplerOrbit::State orbit = orbit_.at(t_s);
+DynamicsModel::Environment DynamicsModel::environmentAt(double t_s) {
+  Environment env;
+  env.orbit = orbit_.at(t_s);
+  const Eigen::Vector3d& r_N = env.orbit.r_N_m;
   const Eigen::Matrix3d R_EN_now = R_EN(jd_epoch_ + t_s / kSecondsPerDay);
-  const Eigen::Vector3d r_sun_N_m = sunPosition_N_m(jd_epoch_ + (t_s + kTtMinusUtc_s) / kSecondsPerDay);
-  const double lit = illumination(orbit.r_N_m, r_sun_N_m);
+  env.r_E_m = R_EN_now * r_N;
+  env.b_N_T = R_EN_now.transpose() * (harmonics_ ? harmonics_->b_E_T(env.r_E_m) : dipole_.b_E_T(env.r_E_m));
   // The atmosphere turns with the Earth about the N z axis (equator of date ≈ ECI).
-  const Eigen::Vector3d air_velocity_N = kEarthRotationRate_rad_s * Eigen::Vector3d::UnitZ().cross(orbit.r_N_m);
-  return Environment{orbit,
-                     R_EN_now.transpose() * field_.b_E_T(R_EN_now * orbit.r_N_m),
-                     air_velocity_N - orbit.v_N_m_s,
-                     r_sun_N_m,
-                     lit,
-                     solarFlux_W_m2((r_sun_N_m - orbit.r_N_m).norm(), lit)};
+  env.wind_N_m_s = kEarthRotationRate_rad_s * Eigen::Vector3d::UnitZ().cross(r_N) - env.orbit.v_N_m_s;
+  env.r_sun_N_m = sunPosition_N_m(jd_epoch_ + (t_s + kTtMinusUtc_s) / kSecondsPerDay);
+  env.illumination = illumination(r_N, env.r_sun_N_m);
+  env.solar_flux_W_m2 = solarFlux_W_m2((env.r_sun_N_m - r_N).norm(), env.illumination);
+  env.density_kg_m3 =
+      atmosphere_ ? atmosphere_->density_kg_m3(r_N, env.r_sun_N_m.normalized()) : params_.density_kg_m3;
+  return env;
+}
+
+DynamicsModel::Environment DynamicsModel::interpolated(const Environment& a, const Environment& b, double s) {
+  Environment env;
+  env.orbit.r_N_m = lerp(a.orbit.r_N_m, b.orbit.r_N_m, s);
+  env.orbit.v_N_m_s = lerp(a.orbit.v_N_m_s, b.orbit.v_N_m_s, s);
+  env.r_E_m = lerp(a.r_E_m, b.r_E_m, s);
+  env.b_N_T = lerp(a.b_N_T, b.b_N_T, s);
+  env.wind_N_m_s = lerp(a.wind_N_m_s, b.wind_N_m_s, s);
+  env.r_sun_N_m = lerp(a.r_sun_N_m, b.r_sun_N_m, s);
+  env.illumination = lerp(a.illumination, b.illumination, s);
+  env.solar_flux_W_m2 = lerp(a.solar_flux_W_m2, b.solar_flux_W_m2, s);
+  env.density_kg_m3 = lerp(a.density_kg_m3, b.density_kg_m3, s);
+  return env;
 }
 
 Eigen::Vector3d DynamicsModel::Torques::total_B_Nm() const {
@@ -98,10 +150,10 @@ DynamicsModel::Torques DynamicsModel::torquesAt(const Environment& env, const Ei
                                       : Eigen::Vector3d::Zero();
   torques.magnetic_B_Nm = dipole_B_Am2.cross(torques.b_B_T);
   torques.residual_magnetic_B_Nm = params_.residual_dipole_B_Am2.cross(torques.b_B_T);
-  torques.aerodynamic = aerodynamicForceTorque(params_.panels, params_.density_kg_m3, torques.wind_B_m_s);
+  torques.aerodynamic = aerodynamicForceTorque(params_.panels, env.density_kg_m3, torques.wind_B_m_s);
   torques.solar_pressure = solarPressureForceTorque(params_.panels, torques.sun_B_unit, env.solar_flux_W_m2);
   if (flaps_) {
-    torques.flaps_aerodynamic = aerodynamicForceTorque(flap_panels_, params_.density_kg_m3, torques.wind_B_m_s);
+    torques.flaps_aerodynamic = aerodynamicForceTorque(flap_panels_, env.density_kg_m3, torques.wind_B_m_s);
     torques.aerodynamic += torques.flaps_aerodynamic;
     torques.solar_pressure += solarPressureForceTorque(flap_panels_, torques.sun_B_unit, env.solar_flux_W_m2);
   }
@@ -118,7 +170,7 @@ Eigen::Vector3d DynamicsModel::clipDipole(const Eigen::Vector3d& dipole_B_Am2) c
 }
 
 void DynamicsModel::updateTruth(const Applied& applied, double substep_s) {
-  const Environment env = environmentAt(toSeconds(t_));
+  const Environment& env = env_;
   const Torques torques = torquesAt(env, state_.q_NB, applied.dipole_B_Am2);
 
   Truth& truth = truth_;
@@ -131,11 +183,13 @@ void DynamicsModel::updateTruth(const Applied& applied, double substep_s) {
   truth.H_total_N_Nms = body_.totalMomentum_N_Nms(state_);
   truth.r_N_m = env.orbit.r_N_m;
   truth.v_N_m_s = env.orbit.v_N_m_s;
+  truth.geodetic = geodeticFromEarthFixed(env.r_E_m);
   truth.b_N_T = env.b_N_T;
   truth.b_B_T = torques.b_B_T;
   truth.sun_N_unit = (env.r_sun_N_m - env.orbit.r_N_m).normalized();
   truth.sun_B_unit = torques.sun_B_unit;
   truth.illumination = env.illumination;
+  truth.density_kg_m3 = env.density_kg_m3;
   truth.dipole_applied_B_Am2 = applied.dipole_B_Am2;
   truth.tau_gravity_gradient_B_Nm = torques.gravity_gradient_B_Nm;
   truth.tau_magnetic_B_Nm = torques.magnetic_B_Nm;

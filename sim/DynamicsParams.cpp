@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "sim/DynamicsModel.hpp"
+#include "sim/DynamicsParams.hpp"
 
 #include <cmath>
 
@@ -14,18 +14,40 @@ void appendNested(const std::string& prefix, const std::vector<std::string>& nes
   for (const std::string& error : nested) errors.push_back(prefix + "." + error);
 }
 
+void appendHarmonicsErrors(const GaussCoefficients& c, std::vector<std::string>& errors) {
+  if (c.degree < 1 || c.degree > GaussCoefficients::kMaxDegree) {
+    errors.push_back("field_harmonics.degree: " + std::to_string(c.degree) + " must be in 1..13");
+    return;
+  }
+  bool finite = true;
+  for (int n = 1; n <= c.degree; ++n) {
+    for (int m = 0; m <= n; ++m) finite = finite && std::isfinite(c.g_nT[n][m]) && std::isfinite(c.h_nT[n][m]);
+  }
+  if (!finite) errors.push_back("field_harmonics: Gauss coefficients must be finite");
+  if (c.g_nT[1][0] == 0.0) errors.push_back("field_harmonics: no coefficients (g10 = 0)");
+}
+
 }  // namespace
 
 std::vector<std::string> DynamicsParams::validate() const {
   std::vector<std::string> errors;
   appendNested("epoch", epoch.validate(), errors);
   appendNested("orbit", orbit.validate(), errors);
+  appendNested("orbit_track", orbit_track.validate(), errors);
+  if (orbit_track.propagator == OrbitPropagation::kNumerical && orbit_track.forces.drag && !atmosphere) {
+    errors.push_back(
+        "orbit_track.forces.drag: needs an atmosphere model (the constant density is for the panels only)");
+  }
   const std::vector<std::string> body_errors = body.validate();
   appendNested("body", body_errors, errors);
 
   if (!std::isfinite(field.g10_nT) || !std::isfinite(field.g11_nT) || !std::isfinite(field.h11_nT)) {
     errors.push_back("field: Gauss coefficients must be finite");
   }
+  if (field_degree < 1 || field_degree > GaussCoefficients::kMaxDegree) {
+    errors.push_back("field_degree: " + std::to_string(field_degree) + " must be in 1..13");
+  }
+  if (field_model == FieldModel::kSphericalHarmonics) appendHarmonicsErrors(field_harmonics, errors);
   if (!torquer_max_dipole_Am2.allFinite() || (torquer_max_dipole_Am2.array() < 0.0).any()) {
     errors.push_back("torquer_max_dipole_Am2: every coil limit must be finite and ≥ 0");
   }
@@ -41,6 +63,7 @@ std::vector<std::string> DynamicsParams::validate() const {
     appendNested("thrusters[" + std::to_string(i) + "]", thrusters[i].validate(), errors);
   }
   appendNested("flaps", flaps.validate(), errors);
+  if (atmosphere) appendNested("atmosphere", atmosphere->validate(), errors);
   if (!(density_kg_m3 >= 0.0) || !std::isfinite(density_kg_m3)) {
     errors.push_back("density_kg_m3: " + formatNumber(density_kg_m3) + " must be finite and ≥ 0");
   }

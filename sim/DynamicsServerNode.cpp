@@ -31,6 +31,21 @@ msg::TruthState toMessage(const Truth& truth, int wheel_count, const bus::StepCo
   put(m.tau_gravity_gradient_body_Nm(), truth.tau_gravity_gradient_B_Nm);
   put(m.tau_magnetic_body_Nm(), truth.tau_magnetic_B_Nm);
   put(m.tau_disturbance_body_Nm(), truth.tau_disturbance_B_Nm);
+  m.latitude_rad(truth.geodetic.latitude_rad);
+  m.longitude_rad(truth.geodetic.longitude_rad);
+  m.altitude_m(truth.geodetic.height_m);
+  m.density_kg_m3(truth.density_kg_m3);
+  m.solar_flux_W_m2(truth.solar_flux_W_m2);
+  put(m.tau_residual_magnetic_body_Nm(), truth.tau_residual_magnetic_B_Nm);
+  put(m.wheel_friction_torque_Nm(), truth.wheel_friction_torque_Nm);
+  put(m.f_aerodynamic_body_N(), truth.f_aerodynamic_B_N);
+  put(m.tau_aerodynamic_body_Nm(), truth.tau_aerodynamic_B_Nm);
+  put(m.tau_flaps_body_Nm(), truth.tau_flaps_B_Nm);
+  put(m.f_solar_pressure_body_N(), truth.f_solar_pressure_B_N);
+  put(m.tau_solar_pressure_body_Nm(), truth.tau_solar_pressure_B_Nm);
+  put(m.flap_angle_rad(), truth.flap_angle_applied_rad);
+  put(m.f_thruster_body_N(), truth.f_thruster_B_N);
+  put(m.tau_thruster_body_Nm(), truth.tau_thruster_B_Nm);
   return m;
 }
 

@@ -4,8 +4,11 @@
 #include <cmath>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "sim/Constants.hpp"
+#include "sim/DynamicsServerSections.hpp"
+#include "sim/GeomagneticCoefficients.hpp"
 #include "sim/SunEphemeris.hpp"
 
 namespace flatsat::sim {
@@ -23,6 +26,38 @@ std::string findDataFile(const bus::Scenario& scenario, const std::string& name)
     if (fs::exists(fs::path(dir) / given)) return (fs::path(dir) / given).string();
   }
   return name;
+}
+
+/// orbit.propagator, orbit.step_s and the force switches orbit.forces.*; the
+/// spacecraft's mass and areas are read with the spacecraft.
+void readPropagator(bus::ParamReader& orbit, OrbitTrackParams& track) {
+  std::string propagator = "kepler";
+  orbit.read("propagator", propagator);
+  if (propagator == "numerical") {
+    track.propagator = OrbitPropagation::kNumerical;
+  } else if (propagator != "kepler") {
+    orbit.problem("propagator", "'" + propagator + "' is neither kepler nor numerical");
+  }
+  orbit.read("step_s", track.step_s, "s");
+  auto forces = orbit.section("forces");
+  OrbitForceParams& f = track.forces;
+  forces.read("j2", f.j2);
+  forces.read("j3", f.j3);
+  forces.read("j4", f.j4);
+  forces.read("drag", f.drag);
+  forces.read("solar_pressure", f.solar_pressure);
+  forces.read("sun_gravity", f.sun_gravity);
+  forces.read("moon_gravity", f.moon_gravity);
+  forces.finish();
+  if (track.propagator == OrbitPropagation::kKepler) {
+    for (const char* key : {"step_s", "forces"}) {
+      if (orbit.has(key)) orbit.problem(key, "only with propagator: numerical");
+    }
+  }
+  // The forces' errors are the spacecraft's (mass, areas, coefficients).
+  for (const std::string& error : track.validate()) {
+    if (error.rfind("forces.", 0) != 0) orbit.problems({error});
+  }
 }
 
 void readOrbit(bus::ParamReader orbit, DynamicsParams& p) {
@@ -47,103 +82,76 @@ void readOrbit(bus::ParamReader orbit, DynamicsParams& p) {
   orbit.read("arg_perigee_rad", p.orbit.arg_perigee_rad, "rad");
   orbit.read("mean_anomaly_rad", p.orbit.mean_anomaly_rad, "rad");
   orbit.problems(p.orbit.validate());
+  readPropagator(orbit, p.orbit_track);
   orbit.finish();
 }
 
-/// Optical and accommodation fractions, shared by panels and flaps.
-template <class Surface>
-void readSurface(bus::ParamReader& reader, Surface& surface) {
-  reader.read("specular", surface.specular, "-");
-  reader.read("diffuse", surface.diffuse, "-");
-  reader.read("absorbed", surface.absorbed, "-");
-  reader.read("aero_specular", surface.aero_specular, "-");
-}
-
-/// spacecraft.panels: a list of mappings, one per panel.
-void readPanels(bus::ParamReader& spacecraft, DynamicsParams& p) {
-  for (auto& reader : spacecraft.list("panels")) {
-    Panel panel;
-    reader.read("area_m2", panel.area_m2, "m^2");
-    reader.read("normal_body", panel.normal_B, "-");
-    reader.read("cp_body_m", panel.r_cp_B_m, "m");
-    readSurface(reader, panel);
-    reader.problems(panel.validate());
-    reader.finish();
-    p.panels.push_back(panel);
-  }
-}
-
-/// spacecraft.thrusters: a list of mappings; a `gimbal` mapping makes the
-/// thruster gimballed.
-void readThrusters(bus::ParamReader& spacecraft, DynamicsParams& p) {
-  for (auto& reader : spacecraft.list("thrusters")) {
-    ThrusterParams thruster;
-    reader.read("position_body_m", thruster.r_B_m, "m");
-    reader.read("direction_body", thruster.direction_B, "-");
-    reader.read("thrust_N", thruster.thrust_N, "N");
-    reader.read("min_impulse_bit_Ns", thruster.min_impulse_bit_Ns, "N s");
-    reader.read("failed", thruster.failed);
-    thruster.gimballed = reader.has("gimbal");
-    auto gimbal = reader.section("gimbal");
-    gimbal.read("axis_1_body", thruster.gimbal_axis1_B, "-");
-    gimbal.read("min_1_rad", thruster.gimbal_min_rad[0], "rad");
-    gimbal.read("max_1_rad", thruster.gimbal_max_rad[0], "rad");
-    gimbal.read("axis_2_body", thruster.gimbal_axis2_B, "-");
-    gimbal.read("min_2_rad", thruster.gimbal_min_rad[1], "rad");
-    gimbal.read("max_2_rad", thruster.gimbal_max_rad[1], "rad");
-    gimbal.finish();
-    reader.problems(thruster.validate());
-    reader.finish();
-    p.thrusters.push_back(thruster);
-  }
-}
-
-void readSpacecraft(bus::ParamReader spacecraft, DynamicsParams& p) {
-  spacecraft.read("inertia_kg_m2", p.body.J_B_kg_m2, "kg m^2");
-  spacecraft.read("residual_dipole_body_Am2", p.residual_dipole_B_Am2, "A m^2");
-  auto wheels = spacecraft.section("wheels");
-  wheels.read("axes_body", p.body.wheel_axes_B, p.body.wheel_count);
-  wheels.read("inertia_kg_m2", p.body.wheel_inertia_kg_m2, "kg m^2");
-  wheels.read("max_torque_Nm", p.body.wheel_max_torque_Nm, "N m");
-  wheels.read("max_momentum_Nms", p.body.wheel_max_momentum_Nms, "N m s");
-  wheels.read("viscous_friction_Nms_per_rad", p.body.wheel_viscous_friction_Nms_rad, "N m s/rad");
-  wheels.read("coulomb_friction_Nm", p.body.wheel_coulomb_friction_Nm, "N m");
-  // A scalar applies to every wheel; slots beyond the count stay empty.
-  for (int i = p.body.wheel_count; i < kMaxWheels; ++i) {
-    p.body.wheel_inertia_kg_m2[i] = p.body.wheel_max_torque_Nm[i] = 0.0;
-    p.body.wheel_max_momentum_Nms[i] = 0.0;
-    p.body.wheel_viscous_friction_Nms_rad[i] = p.body.wheel_coulomb_friction_Nm[i] = 0.0;
-  }
-  wheels.finish();
-  auto torquers = spacecraft.section("torquers");
-  torquers.read("max_dipole_Am2", p.torquer_max_dipole_Am2, "A m^2");
-  torquers.finish();
-  readPanels(spacecraft, p);
-  readThrusters(spacecraft, p);
-  auto flaps = spacecraft.section("flaps");
-  p.flaps.fitted = spacecraft.has("flaps");
-  flaps.read("plate_area_m2", p.flaps.plate_area_m2, "m^2");
-  flaps.read("lever_arm_m", p.flaps.lever_arm_m, "m");
-  flaps.read("max_angle_rad", p.flaps.max_angle_rad, "rad");
-  readSurface(flaps, p.flaps);
-  flaps.problems(p.flaps.validate());
-  flaps.finish();
-  spacecraft.problems(p.body.validate());
-  spacecraft.finish();
-}
-
-void readEnvironment(const bus::Scenario& scenario, bus::ParamReader environment,
-                     DynamicsParams& p) {
+/// environment.field_model and its files: the tilted dipole's coefficients
+/// always come from the IGRF file (the onboard models use them too).
+void readField(const bus::Scenario& scenario, bus::ParamReader& environment, DynamicsParams& p) {
+  std::string model = "tilted_dipole";
   std::string igrf_file = "igrf/igrf14coeffs.txt";
+  std::string wmm_file = "wmm/WMM2025.COF";
+  environment.read("field_model", model);
   environment.read("igrf_file", igrf_file);
+  environment.read("wmm_file", wmm_file);
+  environment.read("field_degree", p.field_degree);
+  const double year = decimalYear(p.epoch);
+  const auto load = [&](const char* key, const std::string& file, auto loader) {
+    try {
+      p.field_harmonics = loader(findDataFile(scenario, file), year);
+      p.field_model = FieldModel::kSphericalHarmonics;
+    } catch (const std::exception& e) {
+      environment.problem(key, e.what());
+    }
+  };
+  bool igrf_read = false;
   try {
-    p.field = igrfDipoleAt(findDataFile(scenario, igrf_file), decimalYear(p.epoch));
+    p.field = igrfDipoleAt(findDataFile(scenario, igrf_file), year);
+    igrf_read = true;
   } catch (const std::exception& e) {
     environment.problem("igrf_file", e.what());
   }
-  environment.read("gravity_gradient", p.gravity_gradient);
-  // Constant until the atmosphere model is connected.
+  if (model == "igrf14") {
+    if (igrf_read) load("igrf_file", igrf_file, igrf14Coefficients);
+  } else if (model == "wmm2025") {
+    load("wmm_file", wmm_file, wmm2025Coefficients);
+  } else if (model != "tilted_dipole") {
+    environment.problem("field_model", "'" + model + "' is not tilted_dipole, igrf14 or wmm2025");
+  }
+  if (p.field_degree < 1 || p.field_degree > GaussCoefficients::kMaxDegree) {
+    environment.problem("field_degree", std::to_string(p.field_degree) + " must be in 1..13");
+  }
+}
+
+/// environment.atmosphere: constant (density_kg_m3) or a density model.
+void readAtmosphere(bus::ParamReader& environment, DynamicsParams& p) {
+  std::string model = "constant";
+  environment.read("atmosphere", model);
+  AtmosphereParams atmosphere;
+  environment.read("bulge_exponent", atmosphere.bulge_exponent, "-");
   environment.read("density_kg_m3", p.density_kg_m3, "kg/m^3");
+  if (model == "harris_priester" || model == "exponential") {
+    atmosphere.model = model == "exponential" ? DensityModel::kExponential : DensityModel::kHarrisPriester;
+    environment.problems(atmosphere.validate());
+    p.atmosphere = atmosphere;
+    if (environment.has("density_kg_m3")) environment.problem("density_kg_m3", "only with atmosphere: constant");
+  } else if (model != "constant") {
+    environment.problem("atmosphere", "'" + model + "' is not constant, harris_priester or exponential");
+  }
+  if (model != "harris_priester" && environment.has("bulge_exponent")) {
+    environment.problem("bulge_exponent", "only with atmosphere: harris_priester");
+  }
+  const OrbitTrackParams& track = p.orbit_track;
+  if (track.propagator == OrbitPropagation::kNumerical && track.forces.drag && !p.atmosphere) {
+    environment.problem("atmosphere", "the numerical orbit's drag needs harris_priester or exponential");
+  }
+}
+
+void readEnvironment(const bus::Scenario& scenario, bus::ParamReader environment, DynamicsParams& p) {
+  readField(scenario, environment, p);
+  readAtmosphere(environment, p);
+  environment.read("gravity_gradient", p.gravity_gradient);
   environment.read("disturbance_torque_body_Nm", p.disturbance_torque_B_Nm, "N m");
   environment.finish();
 }
@@ -196,10 +204,16 @@ DynamicsServerParams readDynamicsServerParams(const bus::Scenario& scenario,
                                               bus::ConfigProblems& problems) {
   DynamicsServerParams params;
   DynamicsParams& p = params.dynamics;
+  const std::size_t problems_before = problems.list().size();
   p = readPlant(scenario, problems);
+  const bool plant_read = problems.list().size() == problems_before;
   auto own = scenario.componentParams(name, problems);
   own.read("substeps", p.substeps);
-  own.problems(p.validate());
+  // The plant's sections report their own faults at their keys; validate() adds
+  // only what they cannot see (the server's own keys, or anything once they are clean).
+  for (const std::string& error : p.validate()) {
+    if (plant_read || error.rfind("substeps", 0) == 0) own.problems({error});
+  }
   own.finish();
 
   params.step_period_ns = fromSeconds(scenario.step_s);

@@ -16,10 +16,10 @@ struct DipoleCoefficients {
   double h11_nT = 4545.5;    // [nT]
 };
 
-/// Reads the degree-1 coefficients at decimal_year [yr] from an IGRF coefficient
-/// table (IGRF-14 layout: rows "g|h n m", one column per 5-year epoch, then the
-/// secular variation [nT/yr] for the five years after the last epoch). Linear
-/// in time between epochs; last epoch + (t − last)·SV after it.
+/// The degree-1 terms of igrf14Coefficients() at decimal_year [yr] (IGRF-14 layout:
+/// rows "g|h n m", one column per 5-year epoch, then the secular variation [nT/yr]
+/// for the five years after the last epoch; linear in time between epochs, last
+/// epoch + (t − last)·SV after it).
 /// @throws std::runtime_error naming the file, the line and the reason when the
 ///         file is missing or malformed or the year is outside the table.
 DipoleCoefficients igrfDipoleAt(const std::string& igrf_coeff_file, double decimal_year);

@@ -100,6 +100,12 @@ Eigen::Vector3d OrbitPropagator::acceleration_N(double t_s, const State& state) 
   return forces_.acceleration_N(state.r_N_m, state.v_N_m_s, forces_.thirdBodiesAt(jdTt(t_s)));
 }
 
+void OrbitPropagator::restart(double t_s, const State& state) {
+  t_s_ = t_s;
+  state_ = state;
+  bodies_ = forces_.thirdBodiesAt(jdTt(t_s));
+}
+
 void OrbitPropagator::step(double dt_s) {
   if (dt_s == 0.0 || !std::isfinite(dt_s)) return;
   const ThirdBodies start = bodies_;

@@ -31,6 +31,10 @@ class OrbitPropagator {
   /// [s] since the epoch.
   double time_s() const { return t_s_; }
 
+  /// Restarts from `state` at t_s [s] after the epoch (an impulse, a reset). Never
+  /// throws, never allocates; the state is not checked.
+  void restart(double t_s, const State& state);
+
   /// Advances by dt_s [s] (negative goes back) in one step. A zero or non-finite dt_s
   /// changes nothing. Never throws, never allocates.
   void step(double dt_s);

@@ -106,18 +106,7 @@ CLI::App* addEchoCommand(CLI::App& app, int& exit_code) {
       "show each producer's latest sample from before. Arrays of chars are text,\n"
       "enums their names.");
   cmd->callback([options, &exit_code] {
-    try {
-      const bool found =
-          withTopic(options->topic, [&](const auto& def) { exit_code = echo(def, *options); });
-      if (!found) {
-        std::cerr << "error: unknown topic '" << options->topic
-                  << "'; topics: " << registryTopicNames() << "\n";
-        exit_code = 2;
-      }
-    } catch (const std::exception& e) {
-      std::cerr << "error: " << e.what() << "\n";
-      exit_code = 1;
-    }
+    exit_code = runForTopic(options->topic, [&](const auto& def) { return echo(def, *options); });
   });
   return cmd;
 }

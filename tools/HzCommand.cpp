@@ -121,18 +121,7 @@ CLI::App* addHzCommand(CLI::App& app, int& exit_code) {
       "4 s). A lockstep rig runs as fast as its slowest component, a paced one at the\n"
       "scenario's step rate.");
   cmd->callback([options, &exit_code] {
-    try {
-      const bool found =
-          withTopic(options->topic, [&](const auto& def) { exit_code = hz(def, *options); });
-      if (!found) {
-        std::cerr << "error: unknown topic '" << options->topic
-                  << "'; topics: " << registryTopicNames() << "\n";
-        exit_code = 2;
-      }
-    } catch (const std::exception& e) {
-      std::cerr << "error: " << e.what() << "\n";
-      exit_code = 1;
-    }
+    exit_code = runForTopic(options->topic, [&](const auto& def) { return hz(def, *options); });
   });
   return cmd;
 }

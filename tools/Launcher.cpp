@@ -20,6 +20,7 @@
 #include "bus/Endpoints.hpp"
 #include "bus/Shutdown.hpp"
 #include "bus/Topics.hpp"
+#include "bus/NodeMain.hpp"
 #include "components/Registry.hpp"
 
 extern char** environ;
@@ -151,12 +152,16 @@ LaunchResult launch(const bus::Scenario& scenario, const LaunchOptions& options)
   const fs::path logs = fs::path(options.run_dir) / "logs";
   fs::create_directories(logs);
   bus::Bus bus({bus::domainFromEnvironment(scenario.domain_id), bus::profileFromEnvironment(),
-                "flatsat-launcher"});
+                "flatsat-launcher", bus::qosTuning(scenario, bus::kEmulatorStrength)});
   Progress progress(bus, options.progress);
 
   const auto start = Clock::now();
   std::vector<Child> children;
   for (const auto& component : scenario.components) {
+    if (!component.launched) {
+      spdlog::info("{} is external: waiting for it on the bus", component.name);
+      continue;
+    }
     const auto* kind = findComponentKind(component.name);
     Child child{component.name, -1, true, (logs / (component.name + ".log")).string()};
     child.pid = spawn((fs::path(options.bin_dir) / kind->executable).string(),

@@ -74,9 +74,14 @@ PlotContext readPlotContext(const std::string& scenario_file) {
 PlotData readPlotData(const std::string& recording_path, const PlotContext& context) {
   const bus::Recording recording(recording_path, bus::Recording::Access::kRead);
   PlotData d;
-  std::map<std::uint64_t, std::pair<Eigen::Quaterniond, Eigen::Vector3d>> truth_by_step;  // q_NB, b_N
+  struct TruthAtStep {
+    Eigen::Quaterniond q_NB;
+    Eigen::Vector3d b_N_T, b_B_T;
+  };
+  std::map<std::uint64_t, TruthAtStep> truth_by_step;
   const double jd0 = context.epoch ? sim::julianDate(*context.epoch) : 0.0;
-  forEachSample<bus::topics::kTruth>(recording, [&](std::uint64_t step, const msg::TruthState& s) {
+  // Generic (auto) so that `requires` below tests the generated type.
+  forEachSample<bus::topics::kTruth>(recording, [&](std::uint64_t step, const auto& s) {
     TruthRow r{};
     r.t_s = seconds(s.header().sim_time_ns());
     const Eigen::Quaterniond q_NB = bus::quat(s.q_inertial_body()).normalized();
@@ -88,23 +93,30 @@ PlotData readPlotData(const std::string& recording_path, const PlotContext& cont
     r.b_B_uT = bus::vec3(s.b_body_T()) * kTeslaToMicro;
     r.dipole_B_Am2 = bus::vec3(s.dipole_body_Am2());
     r.illumination = s.illumination();
-    if (context.epoch) {
+    if constexpr (requires { s.latitude_rad(); s.longitude_rad(); }) {
+      // The dynamics server's own geodetic sub-satellite point (WGS-84).
+      r.lat_deg = s.latitude_rad() * kRadToDeg;
+      r.lon_deg = s.longitude_rad() * kRadToDeg;
+      d.track = PlotData::Track::kGeodetic;
+    } else if (context.epoch) {
       // Earth-fixed position: GMST rotation only (sim/Time.hpp R_EN); spherical Earth.
       const Eigen::Vector3d r_E =
           sim::R_EN(jd0 + r.t_s / sim::kSecondsPerDay) * bus::vec3(s.r_inertial_m());
       r.lat_deg = std::asin(r_E.z() / r_E.norm()) * kRadToDeg;
       r.lon_deg = std::atan2(r_E.y(), r_E.x()) * kRadToDeg;
+      d.track = PlotData::Track::kGeocentric;
     }
     d.wheel_count = std::min<std::size_t>(s.wheel_count(), 4);
     d.truth.push_back(r);
-    truth_by_step[step] = {q_NB, bus::vec3(s.b_inertial_T())};
+    truth_by_step[step] = {q_NB, bus::vec3(s.b_inertial_T()), bus::vec3(s.b_body_T())};
   });
   forEachSample<bus::topics::kMagnetometer>(
-      recording, [&](std::uint64_t, const msg::MagnetometerReading& s) {
-        if (isValid(s)) {
-          d.magnetometer.push_back({seconds(s.header().sim_time_ns()),
-                                    bus::vec3(s.b_body_T()) * kTeslaToMicro});
-        }
+      recording, [&](std::uint64_t step, const msg::MagnetometerReading& s) {
+        const auto truth = truth_by_step.find(step);
+        if (!isValid(s) || truth == truth_by_step.end()) return;
+        const Eigen::Vector3d b_B = bus::vec3(s.b_body_T());
+        d.magnetometer.push_back({seconds(s.header().sim_time_ns()), b_B * kTeslaToMicro,
+                                  (b_B - truth->second.b_B_T) * 1e9});
       });
   forEachSample<bus::topics::kAttitudeEstimate>(
       recording, [&](std::uint64_t step, const msg::AttitudeEstimate& s) {
@@ -112,13 +124,13 @@ PlotData readPlotData(const std::string& recording_path, const PlotContext& cont
         if (!s.initialized() || truth == truth_by_step.end()) return;
         const Eigen::Quaterniond q_est = bus::quat(s.q_inertial_body()).normalized();
         // Error rotation, body axes of the truth: q_err = q_true^-1 q_est.
-        Eigen::Quaterniond q_err = truth->second.first.conjugate() * q_est;
+        Eigen::Quaterniond q_err = truth->second.q_NB.conjugate() * q_est;
         if (q_err.w() < 0) q_err.coeffs() *= -1.0;
         EstimateRow r{};
         r.t_s = seconds(s.header().sim_time_ns());
         r.error_deg = 2.0 * std::atan2(q_err.vec().norm(), q_err.w()) * kRadToDeg;
         r.error_B_deg = 2.0 * q_err.vec() * kRadToDeg;
-        r.b_B_uT = (q_est.conjugate() * truth->second.second) * kTeslaToMicro;
+        r.b_B_uT = (q_est.conjugate() * truth->second.b_N_T) * kTeslaToMicro;
         d.estimate.push_back(r);
       });
   forEachSample<bus::topics::kDipoleCmd>(recording, [&](std::uint64_t, const msg::DipoleCmd& s) {

@@ -16,7 +16,7 @@ namespace flatsat::tools {
 /// What the scenario adds to the figures; every field optional.
 struct PlotContext {
   Eigen::Vector3d pointing_axis_B = Eigen::Vector3d::UnitX();  ///< [-] controller's axis
-  std::optional<sim::UtcEpoch> epoch;              ///< t = 0 (ground track)
+  std::optional<sim::UtcEpoch> epoch;              ///< t = 0 (ground track from GMST)
   std::optional<double> acquisition_s;             ///< [s] metrics start
   std::optional<double> wheel_capacity_Nms;        ///< [N m s] smallest wheel's capacity
   std::optional<Eigen::Vector3d> max_dipole_Am2;   ///< [A m^2] per coil
@@ -36,12 +36,13 @@ struct TruthRow {
   Eigen::Vector3d b_B_uT;            ///< [µT] true field, body axes
   Eigen::Vector3d dipole_B_Am2;      ///< [A m^2] applied over the last step
   double illumination;               ///< [-]
-  double lat_deg, lon_deg;           ///< [deg] geocentric sub-satellite point (when epoch known)
+  double lat_deg, lon_deg;           ///< [deg] sub-satellite point (PlotData::track says which)
 };
 
 struct MagnetometerRow {
   double t_s;
-  Eigen::Vector3d b_B_uT;  ///< [µT] measured
+  Eigen::Vector3d b_B_uT;       ///< [µT] measured
+  Eigen::Vector3d error_B_nT;   ///< [nT] measured − true (bias and noise)
 };
 
 struct EstimateRow {
@@ -58,6 +59,11 @@ struct DipoleRow {
 };
 
 struct PlotData {
+  /// Where TruthRow's latitude comes from: the truth's own geodetic
+  /// sub-satellite point, else the inertial position rotated by GMST
+  /// (needs the scenario's epoch), else none.
+  enum class Track { kNone, kGeodetic, kGeocentric };
+  Track track = Track::kNone;
   std::size_t wheel_count = 0;
   std::vector<TruthRow> truth;
   std::vector<MagnetometerRow> magnetometer;

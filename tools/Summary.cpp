@@ -98,6 +98,24 @@ nlohmann::ordered_json summarize(const bus::Scenario& scenario, const std::strin
     stale += counts.first;
     overruns += counts.second;
   }
+  // Exclusive ownership delivers one producer's samples at a time, so a
+  // change of source on a topic is a hand-over (bridge <-> emulator).
+  nlohmann::ordered_json switches = nlohmann::ordered_json::array();
+  bus::forEachTopic([&](const auto& def) {
+    if (def.qos != bus::QosKind::kStepped) return;
+    std::string previous;
+    recording.forEach(std::string(def.name), [&](std::uint64_t step, const std::string& source,
+                                                 const std::vector<std::uint8_t>&) {
+      if (!previous.empty() && source != previous) {
+        switches.push_back({{"time_s", static_cast<double>(step) * scenario.step_s},
+                            {"topic", def.name},
+                            {"from", previous},
+                            {"to", source}});
+      }
+      previous = source;
+    });
+  });
+  s["ownership_switches"] = switches;
   s["stale_inputs"] = stale;
   s["overruns"] = overruns;
   s["recording"] = recording_path;

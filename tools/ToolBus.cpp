@@ -69,7 +69,11 @@ std::uint32_t resolveDomain(int domain_option) {
 
 ToolBus::ToolBus(const std::string& tool_name, int domain_option)
     : domain_(resolveDomain(domain_option)) {
-  bus_ = disabledBus({domain_, bus::profileFromEnvironment(), "flatsat-" + tool_name});
+  bus::BusOptions options;
+  options.domain_id = domain_;
+  options.profile = bus::profileFromEnvironment();
+  options.participant_name = "flatsat-" + tool_name;
+  bus_ = disabledBus(options);
   bus_->participant().set_listener(this, dds::StatusMask::none());
   if (bus_->participant().enable() != ReturnCode_t::RETCODE_OK) {
     throw std::runtime_error("could not enable the DDS participant on domain " +
@@ -136,7 +140,7 @@ std::string ToolBus::participantName(const GuidPrefix& prefix) const {
 
 dds::DataReaderQos tapQos(bus::QosKind kind) {
   dds::DataReaderQos qos = bus::readerQos(kind);
-  if (kind == bus::QosKind::kStepped) {
+  if (kind != bus::QosKind::kState && kind != bus::QosKind::kCommand) {  // stepped streams
     qos.durability().kind = dds::VOLATILE_DURABILITY_QOS;
     qos.reliability().kind = dds::BEST_EFFORT_RELIABILITY_QOS;
   }

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cstdint>
 #include <functional>
+#include <iostream>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -100,8 +101,9 @@ struct Arrival {
   bool historical = false;
 };
 
-/// Reader QoS of a tool: the registry's preset, except that stepped topics
-/// are read volatile and best-effort. A tool watches the live stream: the
+/// Reader QoS of a tool: the registry's preset (so ownership and the like
+/// match the writers), except that stepped topics are read volatile and
+/// best-effort. A tool watches the live stream: the
 /// writers' history would replay old steps and skew rates, and a
 /// best-effort reader never acknowledges, so attaching a tool adds no
 /// protocol work to a rig in lockstep. State and command topics keep their
@@ -169,6 +171,21 @@ bool withTopic(std::string_view name, F&& f) {
     }
   });
   return found;
+}
+
+/// The exit code of `run(def)` for the registry topic named `name`: 2 (with
+/// the known topics listed) when there is none, 1 when it throws.
+template <class Run>
+int runForTopic(std::string_view name, Run&& run) {
+  try {
+    int code = 0;
+    if (withTopic(name, [&](const auto& def) { code = run(def); })) return code;
+    std::cerr << "error: unknown topic '" << name << "'; topics: " << registryTopicNames() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "error: " << e.what() << "\n";
+    return 1;
+  }
 }
 
 /// Waits `seconds` of wall time, returning early (false) on SIGINT/SIGTERM.

@@ -12,11 +12,18 @@
 #include "bus/Shutdown.hpp"
 #include "components/Registry.hpp"
 #include "tools/FieldCommand.hpp"
+#include "tools/EchoCommand.hpp"
+#include "tools/ExportCommand.hpp"
+#include "tools/HealthCommand.hpp"
+#include "tools/HzCommand.hpp"
 #include "tools/Launcher.hpp"
 #include "tools/OrbitCommand.hpp"
+#include "tools/PhysicsBench.hpp"
+#include "tools/PlotCommand.hpp"
 #include "tools/RunDirectory.hpp"
 #include "tools/ShmClean.hpp"
 #include "tools/Summary.hpp"
+#include "tools/TopicsCommand.hpp"
 
 namespace fs = std::filesystem;
 using namespace flatsat;
@@ -103,6 +110,7 @@ std::string defaultScenario() {
 }
 
 int bench(const std::string& scenario, double duration_s) {
+  tools::printPhysicsBench();
   const std::string out = (fs::temp_directory_path() /
                            ("flatsat-bench-" + std::to_string(::getpid()))).string();
   RunOptions o;
@@ -157,6 +165,11 @@ int main(int argc, char** argv) {
   auto* orbit_cmd = tools::addOrbitCommand(app, orbit_exit);
   int field_exit = 0;
   auto* field_cmd = tools::addFieldCommand(app, field_exit);
+  int tool_exit = 0;
+  const std::vector<CLI::App*> tool_cmds = {
+      tools::addTopicsCommand(app, tool_exit), tools::addEchoCommand(app, tool_exit),
+      tools::addHzCommand(app, tool_exit),     tools::addHealthCommand(app, tool_exit),
+      tools::addExportCommand(app, tool_exit), tools::addPlotCommand(app, tool_exit)};
 
   auto* clean_cmd = app.add_subcommand(
       "clean-shm", "remove Fast DDS shared-memory files no live process uses");
@@ -165,6 +178,9 @@ int main(int argc, char** argv) {
   if (run_cmd->parsed()) return run(run_options);
   if (orbit_cmd->parsed()) return orbit_exit;
   if (field_cmd->parsed()) return field_exit;
+  for (auto* tool : tool_cmds) {
+    if (tool->parsed()) return tool_exit;
+  }
   if (clean_cmd->parsed()) {
     for (const auto& name : tools::cleanStaleSharedMemory()) std::cout << "removed " << name << "\n";
     return 0;

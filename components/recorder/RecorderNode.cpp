@@ -21,11 +21,9 @@ RecorderNode::RecorderNode(bus::Bus& bus, bus::NodeOptions options, const Record
       params_(params),
       recording_(params.path, bus::Recording::Access::kCreate) {
   bus::forEachTopic([this](const auto& def) {
-    // Stepped topics whose producer runs in this rig; the protocol topics
+    // Stepped data whose producer runs in this rig; the protocol topics
     // (grant, done) are bookkeeping, not data.
-    if (def.qos == bus::QosKind::kStepped && !def.producer.empty() &&
-        def.name != bus::topics::kStepGrant.name &&
-        options_.schedule.count(std::string(def.producer))) {
+    if (def.qos == bus::QosKind::kStepped && options_.schedule.count(std::string(def.producer))) {
       record(def);
     }
   });

@@ -14,6 +14,7 @@
 #include "sim/Constants.hpp"
 #include "sim/DynamicsModel.hpp"
 #include "sim/SunEphemeris.hpp"
+#include "tests/unit/sim/PyramidWheels.hpp"
 
 using namespace flatsat::sim;
 
@@ -30,13 +31,7 @@ DynamicsParams fullyEquipped() {
   p.epoch = UtcEpoch{2026, 6, 21, 12, 0, 0.0};
   p.orbit = OrbitElements{kEarthEquatorialRadius_m + 560e3, 0.001, 97.6 * kDeg, 30.0 * kDeg, 0.0, 0.0};
   p.body.J_B_kg_m2 = Eigen::Vector3d(2.0, 2.5, 3.0).asDiagonal();
-  p.body.wheel_count = 4;
-  const double s = std::sqrt(2.0 / 3.0);
-  const double c = std::sqrt(1.0 / 3.0);
-  p.body.wheel_axes_B << s, 0.0, -s, 0.0, 0.0, s, 0.0, -s, c, c, c, c;
-  p.body.wheel_inertia_kg_m2.setConstant(2e-3);
-  p.body.wheel_max_torque_Nm.setConstant(0.01);
-  p.body.wheel_max_momentum_Nms.setConstant(0.3);
+  test::fitPyramidWheels(p.body);
   p.body.wheel_viscous_friction_Nms_rad.setConstant(2e-6);
   p.body.wheel_coulomb_friction_Nm.setConstant(5e-5);
   p.field = DipoleCoefficients{-29318.5, -1385.3, 4491.75};

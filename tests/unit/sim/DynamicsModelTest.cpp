@@ -12,6 +12,7 @@
 #include "sim/Disturbances.hpp"
 #include "sim/DynamicsModel.hpp"
 #include "sim/SunEphemeris.hpp"
+#include "tests/unit/sim/PyramidWheels.hpp"
 
 using namespace flatsat::sim;
 using Catch::Matchers::Contains;
@@ -28,15 +29,7 @@ DynamicsParams sunSynchronousSmallSat() {
   p.body.J_B_kg_m2 << 2.0, 0.05, -0.03,  //
       0.05, 2.5, 0.02,                   //
       -0.03, 0.02, 3.0;
-  p.body.wheel_count = 4;
-  const double s = std::sqrt(2.0 / 3.0);
-  const double c = std::sqrt(1.0 / 3.0);
-  p.body.wheel_axes_B << s, 0.0, -s, 0.0,  //
-      0.0, s, 0.0, -s,                     //
-      c, c, c, c;
-  p.body.wheel_inertia_kg_m2.setConstant(2e-3);
-  p.body.wheel_max_torque_Nm.setConstant(0.01);
-  p.body.wheel_max_momentum_Nms.setConstant(0.3);
+  test::fitPyramidWheels(p.body);
   p.field = DipoleCoefficients{-29318.5, -1385.3, 4491.75};
   p.torquer_max_dipole_Am2 = Eigen::Vector3d::Constant(0.2);
   p.gravity_gradient = false;

@@ -105,7 +105,9 @@ TEST_CASE("igrfDipoleAt reports bad files and years", "[sim][field]") {
     CHECK_THROWS_WITH(igrfDipoleAt(f.path, 2001.0), Contains(":2:") && Contains("neither g nor h"));
   }
   WHEN("a small well-formed table") {
-    const TempFile f(std::string(kHeader) + "g 1 0 -100 -200 -10\ng 1 1 10 20 1\nh 1 1 30 60 2\ng 2 0 1 2 3\n");
+    // Degree-2 rows (complete, as the full parser requires) do not disturb the dipole.
+    const TempFile f(std::string(kHeader) + "g 1 0 -100 -200 -10\ng 1 1 10 20 1\nh 1 1 30 60 2\ng 2 0 1 2 3\n" +
+                     "g 2 1 1 2 3\nh 2 1 1 2 3\ng 2 2 1 2 3\nh 2 2 1 2 3\n");
     THEN("it is read and interpolated with its own epochs") {
       const DipoleCoefficients c = igrfDipoleAt(f.path, 2001.0);
       CHECK(c.g10_nT == Approx(-120.0));

@@ -7,6 +7,7 @@
 
 #include "sim/Attitude.hpp"
 #include "sim/RigidBodyWheels.hpp"
+#include "tests/unit/sim/PyramidWheels.hpp"
 
 using namespace flatsat::sim;
 using Catch::Matchers::Contains;
@@ -19,15 +20,7 @@ RigidBodyParams pyramidSpacecraft() {
   p.J_B_kg_m2 << 2.0, 0.05, -0.03,  //
       0.05, 2.5, 0.02,              //
       -0.03, 0.02, 3.0;
-  p.wheel_count = 4;
-  const double s = std::sqrt(2.0 / 3.0);
-  const double c = std::sqrt(1.0 / 3.0);
-  p.wheel_axes_B << s, 0.0, -s, 0.0,  //
-      0.0, s, 0.0, -s,                //
-      c, c, c, c;
-  p.wheel_inertia_kg_m2.setConstant(2e-3);
-  p.wheel_max_torque_Nm.setConstant(0.01);
-  p.wheel_max_momentum_Nms.setConstant(0.3);
+  test::fitPyramidWheels(p);
   return p;
 }
 

@@ -1,0 +1,311 @@
+// SPDX-License-Identifier: Apache-2.0
+// The operator tools against a real rig: topics, echo, hz and health look at
+// a rig running in the background (paced, so rates are known); export and
+// plot read the recording of a finished run.
+#include <catch2/catch.hpp>
+
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <thread>
+
+#include <nlohmann/json.hpp>
+
+#include "tests/support/Run.hpp"
+#include "tests/support/TestDomain.hpp"
+
+extern char** environ;
+
+namespace fs = std::filesystem;
+using namespace flatsat;
+
+namespace {
+
+const std::string kFlatsat = std::string(FLATSAT_BIN_DIR) + "/flatsat";
+const std::string kDefault = std::string(FLATSAT_SCENARIO_DIR) + "/default.yaml";
+/// The default rig's components (deploy/scenarios/default.yaml).
+const std::vector<std::string> kComponents = {
+    "dynamics_server", "magnetometer",        "sun_sensor",           "gyro",    "wheel_tach",
+    "estimator",       "attitude_controller", "unloading_controller", "recorder"};
+
+std::string freshDir(const std::string& tag) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("flatsat-tools-" + tag + "-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  return dir.string();
+}
+
+std::string readFile(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+/// The default rig running paced (10 Hz truth, 1 Hz dipole) in the
+/// background for a live tool to look at; stopped with SIGTERM to the
+/// launcher when the test ends.
+class BackgroundRig {
+ public:
+  explicit BackgroundRig(const std::string& tag) : dir_(freshDir(tag)) {
+    test::exportTestDomain();
+    const std::string command = "exec " + kFlatsat + " run " + kDefault + " -q --out " + dir_ +
+                                " --set mode=paced --set duration_orbits=null"
+                                " --set duration_s=900 > " + dir_ + ".log 2>&1";
+    const char* argv[] = {"/bin/sh", "-c", command.c_str(), nullptr};
+    REQUIRE(::posix_spawn(&pid_, "/bin/sh", nullptr, nullptr, const_cast<char**>(argv), environ) == 0);
+    // Stepping once the time master says so.
+    const fs::path log = fs::path(dir_) / "logs" / "dynamics_server.log";
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+    while (readFile(log).find("every component ready") == std::string::npos) {
+      int status = 0;
+      if (::waitpid(pid_, &status, WNOHANG) == pid_) {
+        pid_ = -1;
+        FAIL("the rig exited before stepping:\n" << readFile(dir_ + ".log"));
+      }
+      if (std::chrono::steady_clock::now() > deadline) FAIL("the rig did not start stepping in 120 s");
+      std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    }
+  }
+  ~BackgroundRig() {
+    if (pid_ > 0) {
+      ::kill(pid_, SIGTERM);
+      int status = 0;
+      ::waitpid(pid_, &status, 0);
+    }
+    fs::remove_all(dir_);
+    fs::remove(dir_ + ".log");
+  }
+  BackgroundRig(const BackgroundRig&) = delete;
+  BackgroundRig& operator=(const BackgroundRig&) = delete;
+
+ private:
+  std::string dir_;
+  pid_t pid_ = -1;
+};
+
+/// A finished lockstep run of 60 simulated seconds (601 steps); its folder.
+std::string finishedRun(const std::string& tag) {
+  test::exportTestDomain();
+  const std::string dir = freshDir(tag);
+  const auto run = test::runCommand(kFlatsat + " run " + kDefault + " -q --out " + dir +
+                                    " --set duration_orbits=null --set duration_s=60");
+  INFO(run.output);
+  REQUIRE(run.exit_code == 0);
+  return dir;
+}
+
+/// Every JSON document in a stream of (pretty) JSON documents.
+std::vector<nlohmann::json> parseDocuments(const std::string& text) {
+  std::vector<nlohmann::json> docs;
+  std::istringstream in(text);
+  while (in >> std::ws && in.peek() != EOF) {
+    nlohmann::json doc;
+    in >> doc;
+    docs.push_back(doc);
+  }
+  return docs;
+}
+
+std::vector<std::string> lines(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) out.push_back(line);
+  return out;
+}
+
+/// stdout only: the tools report progress on stderr.
+test::CommandResult tool(const std::string& args) {
+  return test::runCommand("(" + kFlatsat + " " + args + " 2>/dev/null)");
+}
+
+}  // namespace
+
+TEST_CASE("every tool subcommand explains itself with --help", "[system][tools]") {
+  for (const std::string command : {"topics", "echo", "hz", "health", "export", "plot"}) {
+    CAPTURE(command);
+    const auto help = test::runCommand(kFlatsat + " " + command + " --help");
+    INFO(help.output);
+    CHECK(help.exit_code == 0);
+    CHECK(help.output.find("Usage:") != std::string::npos);
+    CHECK((help.output.find("--domain") != std::string::npos ||
+           help.output.find("recording") != std::string::npos));
+  }
+}
+
+TEST_CASE("topics lists the registry topics with their producers and rates", "[system][tools]") {
+  BackgroundRig rig("topics");
+  const auto result = tool("topics --seconds 3 --json");
+  INFO(result.output);
+  REQUIRE(result.exit_code == 0);
+  const auto out = nlohmann::json::parse(result.output);
+  std::map<std::string, nlohmann::json> topics;
+  for (const auto& t : out["topics"]) topics[t["name"].get<std::string>()] = t;
+
+  REQUIRE(topics.count("flatsat/truth") == 1);
+  const auto& truth = topics["flatsat/truth"];
+  CHECK(truth["type"] == "flatsat::msg::TruthState");
+  REQUIRE(truth["producers"].size() == 1);
+  CHECK(truth["producers"][0]["name"] == "dynamics_server");
+  CHECK(truth["rate_hz"].get<double>() == Approx(10.0).margin(3.0));  // paced, step 0.1 s
+  CHECK(topics["flatsat/gyro"]["producers"][0]["name"] == "gyro");
+  std::set<std::string> health_producers;
+  for (const auto& p : topics["flatsat/health"]["producers"]) health_producers.insert(p["name"]);
+  CHECK(health_producers == std::set<std::string>(kComponents.begin(), kComponents.end()));
+
+  const auto table = tool("topics --seconds 2");
+  INFO(table.output);
+  CHECK(table.exit_code == 0);
+  bool truth_line = false;
+  for (const auto& line : lines(table.output)) {
+    truth_line |= line.rfind("flatsat/truth ", 0) == 0 && line.find("TruthState") != std::string::npos &&
+                  line.find("dynamics_server") != std::string::npos;
+  }
+  CHECK(truth_line);
+}
+
+TEST_CASE("echo prints a topic's samples as lines or as JSON", "[system][tools]") {
+  BackgroundRig rig("echo");
+  const auto json = tool("echo flatsat/truth --json --count 3 --timeout 30");
+  INFO(json.output);
+  REQUIRE(json.exit_code == 0);
+  const auto docs = parseDocuments(json.output);
+  REQUIRE(docs.size() == 3);
+  for (std::size_t i = 0; i < docs.size(); ++i) {
+    CHECK(docs[i]["header"]["source"] == "dynamics_server");
+    CHECK(docs[i]["q_inertial_body"].size() == 4);
+    if (i > 0) CHECK(docs[i]["header"]["step"] > docs[i - 1]["header"]["step"]);
+  }
+
+  const auto text = tool("echo gyro --count 2 --timeout 30");
+  INFO(text.output);
+  CHECK(text.exit_code == 0);
+  const auto gyro_lines = lines(text.output);
+  REQUIRE(gyro_lines.size() == 2);
+  for (const auto& line : gyro_lines) {
+    CHECK(line.find("header.source=\"gyro\"") != std::string::npos);
+    CHECK(line.find("w_body_rad_s=[") != std::string::npos);
+  }
+
+  const auto health = tool("echo health --json --count 1 --timeout 30");
+  INFO(health.output);
+  CHECK(health.exit_code == 0);
+  CHECK(parseDocuments(health.output).at(0)["state"].is_string());  // enums by name
+
+  const auto unknown = test::runCommand(kFlatsat + " echo flatsat/no_such_topic --count 1");
+  CHECK(unknown.exit_code == 2);
+  CHECK(unknown.output.find("unknown topic") != std::string::npos);
+}
+
+TEST_CASE("hz measures a topic's rate in wall time", "[system][tools]") {
+  BackgroundRig rig("hz");
+  const auto truth = tool("hz truth --seconds 4 --json");
+  INFO(truth.output);
+  REQUIRE(truth.exit_code == 0);
+  const auto t = nlohmann::json::parse(truth.output);
+  CHECK(t["rate_hz"].get<double>() == Approx(10.0).margin(2.5));  // step_s 0.1, paced
+  CHECK(t["samples"].get<int>() >= 20);
+  CHECK(t["interval_s"]["min"].get<double>() <= t["interval_s"]["mean"].get<double>());
+  CHECK(t["interval_s"]["mean"].get<double>() <= t["interval_s"]["max"].get<double>());
+  CHECK(t["interval_s"]["std"].get<double>() >= 0.0);
+
+  const auto dipole = tool("hz dipole_cmd --seconds 5");  // unloading: rate_divider 10
+  INFO(dipole.output);
+  REQUIRE(dipole.exit_code == 0);
+  double rate = 0;
+  REQUIRE(std::sscanf(dipole.output.c_str(), "flatsat/dipole_cmd: average rate %lf Hz", &rate) == 1);
+  CHECK(rate == Approx(1.0).margin(0.4));
+  CHECK(dipole.output.find("interval [s]: mean") != std::string::npos);
+}
+
+TEST_CASE("health --once lists every component of the running rig", "[system][tools]") {
+  BackgroundRig rig("health");
+  const auto table = tool("health --once");
+  INFO(table.output);
+  REQUIRE(table.exit_code == 0);
+  for (const auto& name : kComponents) {
+    CAPTURE(name);
+    bool listed = false;
+    for (const auto& line : lines(table.output)) {
+      listed |= line.rfind(name + " ", 0) == 0 && line.find("RUNNING") != std::string::npos;
+    }
+    CHECK(listed);
+  }
+  const auto json = tool("health --once --json");
+  INFO(json.output);
+  REQUIRE(json.exit_code == 0);
+  const auto rows = nlohmann::json::parse(json.output);
+  CHECK(rows.size() == kComponents.size());
+  for (const auto& row : rows) {
+    CAPTURE(row.dump());
+    CHECK(row["alive"] == true);
+    // A stepping component reports every second; the time master on change only.
+    if (row["component"] != "dynamics_server") CHECK(row["age_s"].get<double>() < 5.0);
+  }
+}
+
+TEST_CASE("export writes one CSV per recorded topic: a row per step, units in the header",
+          "[system][tools]") {
+  const std::string run = finishedRun("export");
+  const std::string recording = run + "/recording.sqlite";
+  const auto csv = tool("export " + recording + " --csv --out " + run + "/csv");
+  INFO(csv.output);
+  REQUIRE(csv.exit_code == 0);
+  struct Expected {
+    std::string file;
+    std::size_t rows;
+    std::string column;
+  };
+  const Expected expected[] = {
+      {"truth.csv", 601, "b_body_T[0] [T]"},
+      {"magnetometer.csv", 601, "b_body_T[2] [T]"},
+      {"sun_sensor.csv", 601, "sun_body_unit[0] [-]"},
+      {"gyro.csv", 601, "w_body_rad_s[1] [rad/s]"},
+      {"wheel_tach.csv", 601, "wheel_speed_rad_s[3] [rad/s]"},
+      {"attitude_estimate.csv", 601, "q_inertial_body[0] [-]"},
+      {"wheel_torque_cmd.csv", 601, "torque_Nm[0] [N m]"},
+      {"dipole_cmd.csv", 61, "m_body_Am2[0] [A m^2]"},  // rate_divider 10
+  };
+  for (const auto& e : expected) {
+    CAPTURE(e.file);
+    const auto rows = lines(readFile(fs::path(run) / "csv" / e.file));
+    REQUIRE(rows.size() == e.rows + 1);
+    CHECK(rows[0].rfind("header.step [-],header.sim_time_ns [ns],", 0) == 0);
+    CHECK(rows[0].find(e.column) != std::string::npos);
+    CHECK(rows[1].rfind("0,0,", 0) == 0);  // step 0 at t = 0
+  }
+  CHECK(fs::exists(fs::path(run) / "csv" / "health.csv"));
+
+  const auto json = tool("export " + recording + " --json --topic truth --out " + run + "/json");
+  INFO(json.output);
+  REQUIRE(json.exit_code == 0);
+  const auto samples = lines(readFile(fs::path(run) / "json" / "truth.jsonl"));
+  REQUIRE(samples.size() == 601);
+  CHECK(nlohmann::json::parse(samples.back())["header"]["step"] == 600);
+  CHECK_FALSE(fs::exists(fs::path(run) / "json" / "gyro.jsonl"));
+
+  CHECK(test::runCommand(kFlatsat + " export " + recording).exit_code == 2);  // neither --csv nor --json
+  fs::remove_all(run);
+}
+
+TEST_CASE("plot draws the review figures of a recording as PNG", "[system][tools]") {
+  const std::string run = finishedRun("plot");
+  const auto result = tool("plot " + run + "/recording.sqlite --out " + run + "/plots");
+  INFO(result.output);
+  REQUIRE(result.exit_code == 0);
+  for (const std::string name : {"pointing_error", "body_rates", "wheels", "dipole", "field",
+                                 "estimator_error", "ground_track"}) {
+    CAPTURE(name);
+    const fs::path png = fs::path(run) / "plots" / (name + ".png");
+    REQUIRE(fs::exists(png));
+    CHECK(fs::file_size(png) > 10000);  // a drawn figure, not an empty canvas
+    CHECK(readFile(png).rfind("\x89PNG\r\n\x1a\n", 0) == 0);
+    CHECK(result.output.find(png.string()) != std::string::npos);
+  }
+  CHECK(fs::exists(fs::path(run) / "plots" / "gnuplot" / "plots.gp"));
+  fs::remove_all(run);
+}
