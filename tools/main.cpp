@@ -74,6 +74,8 @@ int run(const RunOptions& o, nlohmann::ordered_json* summary_out = nullptr) {
     std::cerr << "error: " << e.what() << "\n";
     return kExitBadInput;
   }
+  // Segments left by processes killed in an earlier run go first.
+  tools::cleanStaleSharedMemory();
   const std::string bin_dir = fs::canonical("/proc/self/exe").parent_path().string();
   if (!o.quiet) {
     std::cerr << "flatsat: running '" << scenario.name << "' (" << scenario.components.size()
