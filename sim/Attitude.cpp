@@ -50,4 +50,14 @@ double angleBetween(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   return std::atan2(a.cross(b).norm(), a.dot(b));
 }
 
+Eigen::Matrix3d rot3(double angle_rad) {
+  const double c = std::cos(angle_rad);
+  const double s = std::sin(angle_rad);
+  Eigen::Matrix3d r;
+  r << c, s, 0.0,  //
+      -s, c, 0.0,  //
+      0.0, 0.0, 1.0;
+  return r;
+}
+
 }  // namespace flatsat::sim

@@ -9,6 +9,10 @@ namespace flatsat::sim {
 /// Cross-product matrix: skew(a) * b == a.cross(b).
 Eigen::Matrix3d skew(const Eigen::Vector3d& a);
 
+/// Frame rotation by `angle_rad` about z (Vallado's ROT3): coordinates in the
+/// rotated frame = rot3(angle) * coordinates in the original one.
+Eigen::Matrix3d rot3(double angle_rad);
+
 /// Exponential map: rotation by |phi| [rad] about phi / |phi| (unit quaternion).
 Eigen::Quaterniond quatFromRotationVector(const Eigen::Vector3d& phi);
 

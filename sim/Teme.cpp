@@ -3,20 +3,12 @@
 
 #include <cmath>
 
+#include "sim/Attitude.hpp"
 #include "sim/Time.hpp"
 
 namespace flatsat::sim {
 
-Eigen::Matrix3d R_ET(double jd_ut1) {
-  const double theta = gmst_rad(jd_ut1);
-  const double c = std::cos(theta);
-  const double s = std::sin(theta);
-  Eigen::Matrix3d r;
-  r << c, s, 0.0,  //
-      -s, c, 0.0,  //
-      0.0, 0.0, 1.0;
-  return r;
-}
+Eigen::Matrix3d R_ET(double jd_ut1) { return rot3(gmst_rad(jd_ut1)); }
 
 Eigen::Matrix3d R_NT(double jd_ut1) { return R_EN(jd_ut1).transpose() * R_ET(jd_ut1); }
 

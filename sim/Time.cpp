@@ -6,6 +6,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "sim/Attitude.hpp"
 #include "sim/Format.hpp"
 
 namespace flatsat::sim {
@@ -113,15 +114,6 @@ double gmst_rad(double jd_ut1) {
   return gmst < 2.0 * std::numbers::pi ? gmst : 0.0;
 }
 
-Eigen::Matrix3d R_EN(double jd_ut1) {
-  const double theta = gmst_rad(jd_ut1);
-  const double c = std::cos(theta);
-  const double s = std::sin(theta);
-  Eigen::Matrix3d r;
-  r << c, s, 0.0,  //
-      -s, c, 0.0,  //
-      0.0, 0.0, 1.0;
-  return r;
-}
+Eigen::Matrix3d R_EN(double jd_ut1) { return rot3(gmst_rad(jd_ut1)); }
 
 }  // namespace flatsat::sim
