@@ -35,9 +35,9 @@ AttitudeControllerNode::AttitudeControllerNode(bus::Bus& bus, bus::NodeOptions o
 
 void AttitudeControllerNode::step(const bus::StepContext& ctx) {
   const auto tach = tach_.at(ctx.step);
-  const auto& held = last_tach_.update(tach);
+  const auto& used = last_tach_.update(tach);
   auto message = toMessage(
-      controller_.step(toInput(estimate_.at(ctx.step), held ? *held : tach), ctx.sim_time_ns));
+      controller_.step(toInput(estimate_.at(ctx.step), used), ctx.sim_time_ns));
   message.header(bus::makeHeader(ctx, name()));
   command_.write(message);
 }

@@ -4,14 +4,15 @@
 
 namespace flatsat {
 
-/// The newest sample whose valid() is true: a consumer rides through a
-/// sensor dropout on the last good reading (none before the first one).
+/// Rides a consumer through a sensor dropout on the last good reading.
 template <class Sample>
 class LastValid {
  public:
-  const std::optional<Sample>& update(const Sample& sample) {
+  /// The newest sample whose valid() is true, or `sample` itself before the
+  /// first valid one (the reference lives as long as `sample` or this).
+  const Sample& update(const Sample& sample) {
     if (sample.valid()) last_ = sample;
-    return last_;
+    return last_ ? *last_ : sample;
   }
 
  private:

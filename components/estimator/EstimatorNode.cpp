@@ -52,8 +52,8 @@ void EstimatorNode::step(const bus::StepContext& ctx) {
   std::optional<msg::MagnetometerReading> magnetometer;
   if (magnetometer_ != nullptr) magnetometer = magnetometer_->at(ctx.step);
   const auto gyro = gyro_.at(ctx.step);
-  const auto& held = last_gyro_.update(gyro);
-  const auto in = toInput(held ? *held : gyro, sun_.at(ctx.step), magnetometer,
+  const auto& used = last_gyro_.update(gyro);
+  const auto in = toInput(used, sun_.at(ctx.step), magnetometer,
                           reference_.step(ctx.sim_time_ns));
   auto message = toMessage(filter_.step(in, ctx.sim_time_ns));
   message.header(bus::makeHeader(ctx, name()));

@@ -31,9 +31,9 @@ UnloadingControllerNode::UnloadingControllerNode(bus::Bus& bus, bus::NodeOptions
 
 void UnloadingControllerNode::step(const bus::StepContext& ctx) {
   const auto tach = tach_.at(ctx.step);
-  const auto& held = last_tach_.update(tach);
+  const auto& used = last_tach_.update(tach);
   auto message = toMessage(
-      law_.step(toInput(held ? *held : tach, field_.at(ctx.step)), ctx.sim_time_ns));
+      law_.step(toInput(used, field_.at(ctx.step)), ctx.sim_time_ns));
   message.header(bus::makeHeader(ctx, name()));
   command_.write(message);
 }
