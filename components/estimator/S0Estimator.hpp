@@ -1,0 +1,122 @@
+// SPDX-License-Identifier: Apache-2.0
+#pragma once
+
+#include <cstdint>
+#include <deque>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "components/common/WheelGeometry.hpp"
+#include "components/estimator/S0FieldFromMomentum.hpp"
+
+namespace flatsat::estimator {
+
+/// Measurement cycle of seed S0: how often, how long, how strong.
+struct S0EstimatorParams {
+  WheelGeometry wheels;            // [-] live wheels, axes, rotor inertias (momentum from the tachometers)
+  double quiet_s = 30.0;           // [s] Δt1, no dipole, > 0
+  double pulse_s = 30.0;           // [s] dipole on-time, > 0
+  double settle_s = 30.0;          // [s] no dipole after the pulse, before t2, >= 0 (Δt2 = pulse + settle)
+  double dipole_Am2 = 100.0;       // [A m²] |Mx| asked for on the x coil, > 0
+  double cycle_period_s = 600.0;   // [s] from one request to the next, >= quiet + pulse + settle
+  double average_s = 1.0;          // [s] momentum averaging at t0, t1, t2, >= 0, < quiet_s
+  bool alternate_sign = true;      // [-] flip Mx every cycle so the pulses' impulses cancel
+
+  /// Every violation as "field: reason"; empty when valid.
+  std::vector<std::string> validate() const;
+};
+
+/// A window the estimator asks the coil owner for.
+struct S0Request {
+  std::uint32_t id = 0;                                // [-] > 0, new per cycle
+  Eigen::Vector3d m_B_Am2 = Eigen::Vector3d::Zero();   // [A m²] dipole for the pulse
+  double quiet_s = 0.0, pulse_s = 0.0, settle_s = 0.0; // [s]
+};
+
+struct S0EstimatorInput {
+  Eigen::Vector4d wheel_speed_rad_s = Eigen::Vector4d::Zero();  // [rad/s] tachometers
+  bool tach_valid = false;
+  Eigen::Vector3d w_B_rad_s = Eigen::Vector3d::Zero();  // [rad/s] gyro
+  bool gyro_valid = false;
+  /// [-] R_SE_N: inertial → Sun-ecliptic frame (X Sun, Y in the ecliptic, Z its pole).
+  Eigen::Matrix3d R_SE_N = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d b_N_ref_T = Eigen::Vector3d::Zero();  // [T] reference field (field model at the orbit position)
+  /// The coil owner's report of a window it finished: its request id and what it applied.
+  std::optional<std::pair<std::uint32_t, S0Window>> completed;
+  /// The coil owner refused or dropped the request with this id.
+  std::optional<std::uint32_t> refused;
+};
+
+struct S0EstimatorOutput {
+  std::optional<S0Request> request;  // asserted until the window completes or is refused
+  Eigen::Vector3d b_B_T = Eigen::Vector3d::Zero();  // [T] field estimate, body axes, now
+  bool valid = false;          // a cycle has succeeded: α and b_B_T are usable
+  double alpha_rad = 0.0;      // [rad] roll about the Sun line, α(t) = α(t_ref) + ∫ω_x dt
+  std::uint32_t cycles = 0;    // [-] windows solved
+  std::uint32_t failed_cycles = 0;  // [-] windows that could not be solved or were refused
+  bool solved_now = false;     // a window was solved this step (the fields below are its own)
+  Eigen::Vector3d b_cycle_B_T = Eigen::Vector3d::Zero();  // [T] field of the last window (at its t_ref)
+  std::int64_t t_cycle_ns = 0;                            // [ns] its t_ref
+  double along_dipole_Nm = 0.0;  // [N m] its consistency residual
+};
+
+/// Seed S0 (DE3606636 / US4746085; algorithms.md S0) as a cycle: every
+/// cycle_period_s it asks the coil owner for a window (quiet, ±Mx pulse, settle);
+/// when the owner reports the window done, S0FieldFromMomentum gives By, Bz at the
+/// pulse's mid-time, and the roll angle about the Sun line follows from the
+/// reference field (BX, BY, BZ) in the Sun-ecliptic frame:
+///     cos α = (By·BY + Bz·BZ)/(BY² + BZ²),  sin α = (By·BZ − Bz·BY)/(BY² + BZ²)
+/// taken with atan2 (the common factor cancels). Between cycles α(t) = α + ∫ω_x dt
+/// with the gyro (the seed's α + ω t, with ω measured each step), and the field in
+/// body axes is the reference field turned by α: b_B = (BX, BY cos α + BZ sin α,
+/// −BY sin α + BZ cos α). Body x is taken on the Sun, as the attitude loop holds it.
+/// Bx is never measured: it is BX (the seed: "Bx ... equals the reference BX").
+class S0Estimator {
+ public:
+  using Params = S0EstimatorParams;
+  using Input = S0EstimatorInput;
+  using Output = S0EstimatorOutput;
+
+  /// @throws std::invalid_argument listing every violation of params.validate().
+  explicit S0Estimator(const Params& params);
+
+  void reset();
+  Output step(const Input& in, std::int64_t t_ns);
+
+  const Params& params() const { return params_; }
+
+ private:
+  struct Reference {
+    std::int64_t t_ns;
+    Eigen::Vector3d b_SE_T;  // [T] reference field in the Sun-ecliptic frame
+  };
+  void solve(const S0Window& window, Output& out);
+  const Reference* referenceAt(std::int64_t t_ns) const;
+  double keepSeconds() const;
+
+  Params params_;
+  S0FieldFromMomentum field_;
+  std::deque<Reference> references_;
+  std::optional<S0Request> pending_;
+  std::uint32_t next_id_ = 1;
+  std::int64_t next_request_ns_ = 0;
+  bool valid_ = false;
+  double alpha_rad_ = 0.0;
+  std::int64_t last_t_ns_ = 0;
+  bool has_last_ = false;
+  Eigen::Vector3d last_w_B_rad_s_ = Eigen::Vector3d::Zero();
+  std::uint32_t cycles_ = 0, failed_ = 0;
+  double sign_ = 1.0;
+};
+
+/// [rad] Roll about the Sun line from the body field (By, Bz) and the reference
+/// field (BY, BZ) in the Sun-ecliptic frame (seed S0); NaN when either is zero.
+double s0RollAngle(double by_T, double bz_T, double BY_T, double BZ_T);
+
+/// [T] The reference field b_SE (Sun-ecliptic frame) in body axes at roll α, body x on the Sun.
+Eigen::Vector3d s0BodyField(const Eigen::Vector3d& b_SE_T, double alpha_rad);
+
+}  // namespace flatsat::estimator

@@ -1,0 +1,104 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "components/estimator/S0FieldFromMomentum.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace flatsat::estimator {
+
+namespace {
+double seconds(std::int64_t t_ns) { return static_cast<double>(t_ns) * 1e-9; }
+}  // namespace
+
+S0FieldFromMomentum::S0FieldFromMomentum(double average_s) : average_s_(average_s) {
+  if (!(average_s >= 0.0) || !std::isfinite(average_s)) {
+    throw std::invalid_argument("S0FieldFromMomentum: average_s: must be finite and >= 0");
+  }
+}
+
+void S0FieldFromMomentum::add(const S0MomentumSample& sample, double keep_s) {
+  samples_.push_back(sample);
+  const double oldest_s = seconds(sample.t_ns) - keep_s;
+  while (!samples_.empty() && seconds(samples_.front().t_ns) < oldest_s) samples_.pop_front();
+}
+
+std::optional<S0FieldFromMomentum::Point> S0FieldFromMomentum::meanBefore(std::int64_t t_ns) const {
+  const double end_s = seconds(t_ns);
+  const double start_s = end_s - average_s_;
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  double t_sum = 0.0;
+  int count = 0;
+  for (const auto& s : samples_) {
+    const double t = seconds(s.t_ns);
+    // Half a nanosecond of slack: sample times are exact multiples of the step.
+    if (t < start_s - 1e-9 || t > end_s + 1e-9) continue;
+    sum += s.h_B_Nms;
+    t_sum += t;
+    ++count;
+  }
+  if (count == 0) return std::nullopt;
+  return Point{t_sum / count, sum / count};
+}
+
+Eigen::Vector3d S0FieldFromMomentum::rotationIntegral(double from_s, double to_s) const {
+  Eigen::Vector3d integral = Eigen::Vector3d::Zero();
+  const S0MomentumSample* previous = nullptr;
+  for (const auto& s : samples_) {
+    const double t = seconds(s.t_ns);
+    if (t < from_s - 1e-9 || t > to_s + 1e-9) continue;
+    if (previous != nullptr) {
+      const double dt = t - seconds(previous->t_ns);
+      integral += 0.5 * dt * (s.w_B_rad_s.cross(s.h_B_Nms) +
+                              previous->w_B_rad_s.cross(previous->h_B_Nms));
+    }
+    previous = &s;
+  }
+  return integral;
+}
+
+double S0FieldFromMomentum::angleSince(std::int64_t t_ns, const Eigen::Vector3d& axis) const {
+  double angle = 0.0;
+  const S0MomentumSample* previous = nullptr;
+  for (const auto& s : samples_) {
+    if (previous != nullptr && s.t_ns > t_ns) {
+      // The part of the first interval after t_ns only.
+      const std::int64_t from = std::max(previous->t_ns, t_ns);
+      angle += s.w_B_rad_s.dot(axis) * seconds(s.t_ns - from);
+    }
+    previous = &s;
+  }
+  return angle;
+}
+
+std::optional<S0FieldSolution> S0FieldFromMomentum::solve(const S0Window& w) const {
+  const double pulse_s = seconds(w.pulse_end_ns - w.t1_ns);
+  const double m2 = w.m_B_Am2.squaredNorm();
+  if (!(w.t0_ns < w.t1_ns && w.t1_ns < w.pulse_end_ns && w.pulse_end_ns <= w.t2_ns) || m2 <= 0.0) {
+    return std::nullopt;
+  }
+  if (samples_.empty() || samples_.front().t_ns > w.t0_ns - static_cast<std::int64_t>(average_s_ * 1e9)) {
+    return std::nullopt;  // the quiet interval is no longer (or not yet) in the buffer
+  }
+  const auto p0 = meanBefore(w.t0_ns);
+  const auto p1 = meanBefore(w.t1_ns);
+  const auto p2 = meanBefore(w.t2_ns);
+  if (!p0 || !p1 || !p2) return std::nullopt;
+  const double dt1 = p1->t_s - p0->t_s;
+  const double dt2 = p2->t_s - p1->t_s;
+  if (!(dt1 > 0.0 && dt2 > 0.0)) return std::nullopt;
+
+  const Eigen::Vector3d impulse1 = p1->h_B_Nms - p0->h_B_Nms + rotationIntegral(p0->t_s, p1->t_s);
+  const Eigen::Vector3d impulse2 = p2->h_B_Nms - p1->h_B_Nms + rotationIntegral(p1->t_s, p2->t_s);
+  const Eigen::Vector3d delta = impulse2 - (dt2 / dt1) * impulse1;  // = (m τ) × B
+
+  S0FieldSolution out;
+  out.m_unit_B = w.m_B_Am2 / std::sqrt(m2);
+  out.b_perp_B_T = delta.cross(w.m_B_Am2) / (m2 * pulse_s);
+  out.t_ref_ns = w.t1_ns + (w.pulse_end_ns - w.t1_ns) / 2;
+  out.disturbance_B_Nm = impulse1 / dt1;
+  out.along_dipole_Nm = delta.dot(out.m_unit_B) / pulse_s;
+  return out;
+}
+
+}  // namespace flatsat::estimator
