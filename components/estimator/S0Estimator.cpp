@@ -15,11 +15,16 @@ std::vector<std::string> S0EstimatorParams::validate() const {
   requirePositive(e, "quiet_s", quiet_s);
   requirePositive(e, "pulse_s", pulse_s);
   requireNonNegative(e, "settle_s", settle_s);
+  requireNonNegative(e, "quiet_after_s", quiet_after_s);
+  require(e, body_inertia_kg_m2.allFinite() &&
+                 body_inertia_kg_m2.isApprox(body_inertia_kg_m2.transpose(), 1e-12),
+          "body_inertia_kg_m2", "must be finite and symmetric");
   requirePositive(e, "dipole_Am2", dipole_Am2);
-  require(e, cycle_period_s >= quiet_s + pulse_s + settle_s && std::isfinite(cycle_period_s),
-          "cycle_period_s", "must be finite and >= quiet_s + pulse_s + settle_s");
-  require(e, isNonNegative(average_s) && average_s < quiet_s, "average_s",
-          "must be finite, >= 0 and < quiet_s");
+  require(e, cycle_period_s >= quiet_s + pulse_s + settle_s + quiet_after_s &&
+                 std::isfinite(cycle_period_s),
+          "cycle_period_s", "must be finite and >= quiet_s + pulse_s + settle_s + quiet_after_s");
+  require(e, isNonNegative(average_s) && average_s <= quiet_s / 2, "average_s",
+          "must be finite, >= 0 and <= quiet_s / 2");
   return e;
 }
 
@@ -71,6 +76,7 @@ double S0Estimator::keepSeconds() const {
   // A window starts at most one cycle after it was asked for (the owner may be
   // busy); keep the quiet interval's averaging span too.
   return params_.cycle_period_s + params_.quiet_s + params_.pulse_s + params_.settle_s +
+         params_.quiet_after_s +
          params_.average_s + 1.0;
 }
 
@@ -83,7 +89,7 @@ const S0Estimator::Reference* S0Estimator::referenceAt(std::int64_t t_ns) const 
 }
 
 void S0Estimator::solve(const S0Window& window, Output& out) {
-  const auto solution = field_.solve(window);
+  const auto solution = field_.solve(window, params_.settle_s);
   const Reference* reference = solution ? referenceAt(solution->t_ref_ns) : nullptr;
   if (!solution || reference == nullptr) {
     ++failed_;
@@ -123,7 +129,9 @@ S0EstimatorOutput S0Estimator::step(const Input& in, std::int64_t t_ns) {
   has_last_ = true;
 
   if (in.tach_valid) {
-    field_.add({t_ns, params_.wheels.momentum_B_Nms(in.wheel_speed_rad_s), w}, keepSeconds());
+    const Eigen::Vector3d h = params_.wheels.momentum_B_Nms(in.wheel_speed_rad_s) +
+                              params_.body_inertia_kg_m2 * w;
+    field_.add({t_ns, h, w}, keepSeconds());
   }
   references_.push_back({t_ns, in.R_SE_N * in.b_N_ref_T});
   while (!references_.empty() &&
@@ -144,7 +152,7 @@ S0EstimatorOutput S0Estimator::step(const Input& in, std::int64_t t_ns) {
     r.m_B_Am2 = Eigen::Vector3d::UnitX() * (sign_ * params_.dipole_Am2);
     r.quiet_s = params_.quiet_s;
     r.pulse_s = params_.pulse_s;
-    r.settle_s = params_.settle_s;
+    r.quiet_after_s = params_.settle_s + params_.quiet_after_s;
     if (params_.alternate_sign) sign_ = -sign_;
     pending_ = r;
     next_request_ns_ = t_ns + toNs(params_.cycle_period_s);

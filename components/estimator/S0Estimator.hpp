@@ -17,12 +17,16 @@ namespace flatsat::estimator {
 /// Measurement cycle of seed S0: how often, how long, how strong.
 struct S0EstimatorParams {
   WheelGeometry wheels;            // [-] live wheels, axes, rotor inertias (momentum from the tachometers)
-  double quiet_s = 30.0;           // [s] Δt1, no dipole, > 0
+  /// [kg m²] body inertia, wheels locked: the momentum is Σ wheels + J ω (gyro), so torque the
+  /// attitude loop has not yet moved into the wheels still counts; zero: wheels only (the seed)
+  Eigen::Matrix3d body_inertia_kg_m2 = Eigen::Matrix3d::Zero();
+  double quiet_s = 30.0;           // [s] Δt1, no dipole before the pulse, > 0
   double pulse_s = 30.0;           // [s] dipole on-time, > 0
-  double settle_s = 30.0;          // [s] no dipole after the pulse, before t2, >= 0 (Δt2 = pulse + settle)
+  double settle_s = 0.0;           // [s] no dipole after the pulse, counted with it (the wheels take the impulse), >= 0
+  double quiet_after_s = 30.0;     // [s] no dipole after settling (a changing disturbance drops out), >= 0
   double dipole_Am2 = 100.0;       // [A m²] |Mx| asked for on the x coil, > 0
-  double cycle_period_s = 600.0;   // [s] from one request to the next, >= quiet + pulse + settle
-  double average_s = 1.0;          // [s] momentum averaging at t0, t1, t2, >= 0, < quiet_s
+  double cycle_period_s = 600.0;   // [s] from one request to the next, >= the four intervals
+  double average_s = 1.0;          // [s] momentum averaging at each instant, >= 0, <= quiet_s / 2
   bool alternate_sign = true;      // [-] flip Mx every cycle so the pulses' impulses cancel
 
   /// Every violation as "field: reason"; empty when valid.
@@ -33,7 +37,7 @@ struct S0EstimatorParams {
 struct S0Request {
   std::uint32_t id = 0;                                // [-] > 0, new per cycle
   Eigen::Vector3d m_B_Am2 = Eigen::Vector3d::Zero();   // [A m²] dipole for the pulse
-  double quiet_s = 0.0, pulse_s = 0.0, settle_s = 0.0; // [s]
+  double quiet_s = 0.0, pulse_s = 0.0, quiet_after_s = 0.0;  // [s]
 };
 
 struct S0EstimatorInput {
@@ -64,7 +68,7 @@ struct S0EstimatorOutput {
 };
 
 /// Seed S0 (DE3606636 / US4746085; algorithms.md S0) as a cycle: every
-/// cycle_period_s it asks the coil owner for a window (quiet, ±Mx pulse, settle);
+/// cycle_period_s it asks the coil owner for a window (quiet, ±Mx pulse, quiet);
 /// when the owner reports the window done, S0FieldFromMomentum gives By, Bz at the
 /// pulse's mid-time, and the roll angle about the Sun line follows from the
 /// reference field (BX, BY, BZ) in the Sun-ecliptic frame:

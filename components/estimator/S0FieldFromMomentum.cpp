@@ -23,18 +23,15 @@ void S0FieldFromMomentum::add(const S0MomentumSample& sample, double keep_s) {
   while (!samples_.empty() && seconds(samples_.front().t_ns) < oldest_s) samples_.pop_front();
 }
 
-std::optional<S0FieldFromMomentum::Point> S0FieldFromMomentum::meanBefore(std::int64_t t_ns) const {
-  const double end_s = seconds(t_ns);
-  const double start_s = end_s - average_s_;
+std::optional<S0FieldFromMomentum::Point> S0FieldFromMomentum::meanOver(std::int64_t from_ns,
+                                                                        std::int64_t to_ns) const {
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   double t_sum = 0.0;
   int count = 0;
   for (const auto& s : samples_) {
-    const double t = seconds(s.t_ns);
-    // Half a nanosecond of slack: sample times are exact multiples of the step.
-    if (t < start_s - 1e-9 || t > end_s + 1e-9) continue;
+    if (s.t_ns < from_ns || s.t_ns > to_ns) continue;
     sum += s.h_B_Nms;
-    t_sum += t;
+    t_sum += seconds(s.t_ns);
     ++count;
   }
   if (count == 0) return std::nullopt;
@@ -71,32 +68,47 @@ double S0FieldFromMomentum::angleSince(std::int64_t t_ns, const Eigen::Vector3d&
   return angle;
 }
 
-std::optional<S0FieldSolution> S0FieldFromMomentum::solve(const S0Window& w) const {
+std::optional<S0FieldSolution> S0FieldFromMomentum::solve(const S0Window& w, double settle_s) const {
   const double pulse_s = seconds(w.pulse_end_ns - w.t1_ns);
   const double m2 = w.m_B_Am2.squaredNorm();
   if (!(w.t0_ns < w.t1_ns && w.t1_ns < w.pulse_end_ns && w.pulse_end_ns <= w.t2_ns) || m2 <= 0.0) {
     return std::nullopt;
   }
-  if (samples_.empty() || samples_.front().t_ns > w.t0_ns - static_cast<std::int64_t>(average_s_ * 1e9)) {
-    return std::nullopt;  // the quiet interval is no longer (or not yet) in the buffer
+  if (samples_.empty() || samples_.front().t_ns > w.t0_ns || samples_.back().t_ns < w.t2_ns) {
+    return std::nullopt;  // the window is no longer (or not yet) in the buffer
   }
-  const auto p0 = meanBefore(w.t0_ns);
-  const auto p1 = meanBefore(w.t1_ns);
-  const auto p2 = meanBefore(w.t2_ns);
-  if (!p0 || !p1 || !p2) return std::nullopt;
-  const double dt1 = p1->t_s - p0->t_s;
-  const double dt2 = p2->t_s - p1->t_s;
-  if (!(dt1 > 0.0 && dt2 > 0.0)) return std::nullopt;
+  // Each mean lies in a quiet stretch next to its instant, so every interval holds
+  // whole pulses or none; the intervals run between the means' centroids.
+  const auto a = static_cast<std::int64_t>(std::llround(average_s_ * 1e9));
+  const std::int64_t p_end = std::min(w.t2_ns, w.pulse_end_ns + static_cast<std::int64_t>(
+                                                                    std::llround(settle_s * 1e9)));
+  const bool after = w.t2_ns - p_end >= 2 * a && w.t2_ns > p_end;
+  const auto p0 = meanOver(w.t0_ns, w.t0_ns + a);
+  const auto p1 = meanOver(w.t1_ns - a, w.t1_ns);
+  const auto p2 = after ? meanOver(p_end, p_end + a) : meanOver(p_end, p_end);
+  const auto p3 = after ? meanOver(w.t2_ns - a, w.t2_ns) : p2;
+  if (!p0 || !p1 || !p2 || !p3) return std::nullopt;
+  const double tau_a = p1->t_s - p0->t_s, tau_p = p2->t_s - p1->t_s, tau_c = p3->t_s - p2->t_s;
+  if (!(tau_a > 0.0 && tau_p > 0.0)) return std::nullopt;
 
-  const Eigen::Vector3d impulse1 = p1->h_B_Nms - p0->h_B_Nms + rotationIntegral(p0->t_s, p1->t_s);
-  const Eigen::Vector3d impulse2 = p2->h_B_Nms - p1->h_B_Nms + rotationIntegral(p1->t_s, p2->t_s);
-  const Eigen::Vector3d delta = impulse2 - (dt2 / dt1) * impulse1;  // = (m τ) × B
+  const auto impulse = [&](const Point& a, const Point& b) {
+    return Eigen::Vector3d(b.h_B_Nms - a.h_B_Nms + rotationIntegral(a.t_s, b.t_s));
+  };
+  const Eigen::Vector3d d_a = impulse(*p0, *p1) / tau_a;
+  Eigen::Vector3d d_p = d_a;
+  if (tau_c > 0.0) {
+    const Eigen::Vector3d d_c = impulse(*p2, *p3) / tau_c;
+    const double mid_a = 0.5 * (p0->t_s + p1->t_s), mid_p = 0.5 * (p1->t_s + p2->t_s),
+                 mid_c = 0.5 * (p2->t_s + p3->t_s);
+    d_p = d_a + (d_c - d_a) * (mid_p - mid_a) / (mid_c - mid_a);
+  }
+  const Eigen::Vector3d delta = impulse(*p1, *p2) - d_p * tau_p;  // = (m τ) × B
 
   S0FieldSolution out;
   out.m_unit_B = w.m_B_Am2 / std::sqrt(m2);
   out.b_perp_B_T = delta.cross(w.m_B_Am2) / (m2 * pulse_s);
   out.t_ref_ns = w.t1_ns + (w.pulse_end_ns - w.t1_ns) / 2;
-  out.disturbance_B_Nm = impulse1 / dt1;
+  out.disturbance_B_Nm = d_p;
   out.along_dipole_Nm = delta.dot(out.m_unit_B) / pulse_s;
   return out;
 }

@@ -1,0 +1,18 @@
+// SPDX-License-Identifier: Apache-2.0
+#pragma once
+#include <string>
+
+namespace flatsat::tools {
+
+struct S0StudyOptions {
+  std::string scenario;   // the plant, sensors and attitude loop to study
+  double orbits = 1.0;    // [-] simulated span of each case
+  double cycle_s = 300.0; // [s] from one S0 window to the next
+};
+
+/// Seed S0's accuracy over a grid of window lengths (Δt1 = pulse), settle times
+/// and dipoles, in-process (the scenario's plant, tachometers, gyro and attitude
+/// loop, no bus); prints one table row per case. Returns the exit code.
+int runS0Study(const S0StudyOptions& options);
+
+}  // namespace flatsat::tools
