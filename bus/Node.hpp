@@ -7,6 +7,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <iterator>
@@ -70,12 +71,18 @@ class Input final : public InputBase {
   /// Observes every sample as it arrives (on a Fast DDS thread).
   using Observer = std::function<void(const Sample&)>;
 
-  Input(Node& node, const Def& def, std::uint32_t producer_divider, Observer observer = {});
+  /// lag_steps 1: the sample due at step k is the producer's of step k − 1 (a feedback
+  /// path: the producer consumes this node's output of the same step); nothing is due
+  /// at step 0.
+  Input(Node& node, const Def& def, std::uint32_t producer_divider, Observer observer = {},
+        std::uint32_t lag_steps = 0);
 
   /// The producer's newest sample due at or before step k. In lockstep the
   /// node waited for the one stamped k - k mod (producer divider); paced, it
   /// may be older (stale). Throws NodeFailure when there is none.
   Sample at(std::uint64_t k) const;
+  /// As at(k), but nothing (instead of a throw) when no sample is due yet.
+  std::optional<Sample> atIfAny(std::uint64_t k) const;
   bool has(std::uint64_t k) const override;
   bool hasAny(std::uint64_t k) const override;
   void dropBefore(std::uint64_t k) override;
@@ -83,9 +90,15 @@ class Input final : public InputBase {
   const std::string& topicName() const override { return reader_.topicName(); }
 
  private:
-  std::uint64_t stampFor(std::uint64_t k) const { return k - k % divider_; }
+  /// Whether anything is due at step k (a lagged input has nothing at step 0).
+  bool due(std::uint64_t k) const { return k >= lag_; }
+  std::uint64_t stampFor(std::uint64_t k) const {
+    const std::uint64_t j = k - lag_;
+    return j - j % divider_;
+  }
   Node& node_;
   std::uint32_t divider_;
+  std::uint32_t lag_;
   Observer observer_;
   mutable std::mutex mutex_;
   std::map<std::uint64_t, Sample> samples_;
@@ -107,6 +120,16 @@ class Node {
   Input<Def>& addInput(const Def& def, typename Input<Def>::Observer observer = {}) {
     auto input = std::make_unique<Input<Def>>(*this, def, dividerOf(std::string(def.producer)),
                                               std::move(observer));
+    auto& ref = *input;
+    inputs_.push_back(std::move(input));
+    return ref;
+  }
+  /// An input from a producer that consumes this node's output of the same step:
+  /// at step k it holds the producer's sample of step k − 1.
+  template <class Def>
+  Input<Def>& addFeedbackInput(const Def& def) {
+    auto input = std::make_unique<Input<Def>>(*this, def, dividerOf(std::string(def.producer)),
+                                              typename Input<Def>::Observer{}, 1);
     auto& ref = *input;
     inputs_.push_back(std::move(input));
     return ref;
@@ -192,9 +215,11 @@ void Node::waitUntilNothingMissing(Missing&& missing, const std::string& what) {
 }
 
 template <class Def>
-Input<Def>::Input(Node& node, const Def& def, std::uint32_t producer_divider, Observer observer)
+Input<Def>::Input(Node& node, const Def& def, std::uint32_t producer_divider, Observer observer,
+                  std::uint32_t lag_steps)
     : node_(node),
       divider_(producer_divider),
+      lag_(lag_steps),
       observer_(std::move(observer)),
       reader_(node.bus_, def, [this](const Sample& sample) {
         if (observer_) observer_(sample);
@@ -207,28 +232,36 @@ Input<Def>::Input(Node& node, const Def& def, std::uint32_t producer_divider, Ob
 
 template <class Def>
 typename Input<Def>::Sample Input<Def>::at(std::uint64_t k) const {
+  if (auto sample = atIfAny(k)) return *sample;
+  throw NodeFailure("no sample on " + topicName() + " at or before step " + std::to_string(k));
+}
+
+template <class Def>
+std::optional<typename Input<Def>::Sample> Input<Def>::atIfAny(std::uint64_t k) const {
+  if (!due(k)) return std::nullopt;
   std::lock_guard lock(mutex_);
   auto it = samples_.upper_bound(stampFor(k));
-  if (it == samples_.begin()) {
-    throw NodeFailure("no sample on " + topicName() + " at or before step " + std::to_string(k));
-  }
+  if (it == samples_.begin()) return std::nullopt;
   return std::prev(it)->second;
 }
 
 template <class Def>
 bool Input<Def>::has(std::uint64_t k) const {
+  if (!due(k)) return true;
   std::lock_guard lock(mutex_);
   return samples_.count(stampFor(k)) != 0;
 }
 
 template <class Def>
 bool Input<Def>::hasAny(std::uint64_t k) const {
+  if (!due(k)) return true;
   std::lock_guard lock(mutex_);
   return !samples_.empty() && samples_.begin()->first <= stampFor(k);
 }
 
 template <class Def>
 void Input<Def>::dropBefore(std::uint64_t k) {
+  if (!due(k)) return;
   std::lock_guard lock(mutex_);
   samples_.erase(samples_.begin(), samples_.lower_bound(stampFor(k)));
 }

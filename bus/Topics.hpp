@@ -7,6 +7,7 @@
 
 #include "bus/Qos.hpp"
 #include "msg/ActuationPubSubTypes.h"
+#include "msg/CoilsPubSubTypes.h"
 #include "msg/EstimationPubSubTypes.h"
 #include "msg/FaultsPubSubTypes.h"
 #include "msg/HealthPubSubTypes.h"
@@ -44,6 +45,12 @@ inline constexpr TopicDef<WheelTachReading, WheelTachReadingPubSubType> kWheelTa
     "flatsat/wheel_tach", QosKind::kStepped, "wheel_tach"};
 inline constexpr TopicDef<AttitudeEstimate, AttitudeEstimatePubSubType> kAttitudeEstimate{
     "flatsat/attitude_estimate", QosKind::kStepped, "estimator"};
+inline constexpr TopicDef<FieldEstimate, FieldEstimatePubSubType> kFieldEstimate{
+    "flatsat/field_estimate", QosKind::kStepped, "estimator"};
+inline constexpr TopicDef<CoilRequest, CoilRequestPubSubType> kCoilRequest{
+    "flatsat/coil_request", QosKind::kStepped, "estimator"};
+inline constexpr TopicDef<CoilWindow, CoilWindowPubSubType> kCoilWindow{
+    "flatsat/coil_window", QosKind::kStepped, "unloading_controller"};
 inline constexpr TopicDef<WheelTorqueCmd, WheelTorqueCmdPubSubType> kWheelTorqueCmd{
     "flatsat/wheel_torque_cmd", QosKind::kStepped, "attitude_controller"};
 inline constexpr TopicDef<DipoleCmd, DipoleCmdPubSubType> kDipoleCmd{
@@ -62,7 +69,7 @@ void forEachTopic(F&& f) {
   using namespace topics;
   f(kStepGrant); f(kStepDone); f(kTruth); f(kMagnetometer); f(kSunSensor); f(kGyro);
   f(kWheelTach); f(kAttitudeEstimate); f(kWheelTorqueCmd); f(kDipoleCmd); f(kHealth);
-  f(kFaultCmd); f(kFaultEvent);
+  f(kFaultCmd); f(kFaultEvent); f(kFieldEstimate); f(kCoilRequest); f(kCoilWindow);
 }
 
 }  // namespace flatsat::bus
