@@ -141,6 +141,8 @@ Result runCase(const Setup& s, const Case& c, const S0StudyOptions& o) {
     in.tach_valid = true;
     in.w_B_rad_s = gyro.step({truth.w_NB_B_rad_s}, t).w_NB_B_rad_s;
     in.gyro_valid = true;
+    in.sun_B_unit = truth.sun_B_unit;
+    in.sun_valid = truth.illumination > 0.5;
     in.R_SE_N = R_N_SE.transpose();
     in.b_N_ref_T = truth.b_N_T;  // the field model at the known position (IGRF in the plant)
     if (window && window->second.t2_ns == t) {
@@ -205,16 +207,26 @@ int runS0Study(const S0StudyOptions& o) {
   std::printf("%9s %8s %10s %6s %6s %12s %12s %12s %12s %12s\n", "form", "dt1_s", "dipole_Am2",
               "cycles", "failed", "field_pct_rms", "field_pct_max", "alpha_deg_rms", "alpha_deg_max",
               "field_all_pct_rms");
+  const auto row = [&](const Form& form, double window, double dipole) {
+    const Result r = runCase(setup, {form, window, dipole}, o);
+    std::printf("%9s %8.0f %10.0f %6d %6d %12.3f %12.3f %12.3f %12.3f %12.3f\n", form.name, window,
+                dipole, r.cycles, r.failed, r.field_cycle_pct.rms(), r.field_cycle_pct.max,
+                r.alpha_cycle_deg.rms(), r.alpha_cycle_deg.max, r.field_pct.rms());
+    std::fflush(stdout);
+  };
+  if (!o.form.empty()) {
+    for (const Form& form : kForms) {
+      if (o.form == form.name) {
+        row(form, o.window_s, o.dipole_Am2);
+        return 0;
+      }
+    }
+    std::fprintf(stderr, "s0-study: --form %s: must be seed, settle, settle+q or total+q\n", o.form.c_str());
+    return 2;
+  }
   for (const Form& form : kForms) {
     for (const double window : {1.0, 2.0, 5.0, 10.0, 20.0, 30.0, 60.0}) {
-      for (const double dipole : {25.0, 50.0, 100.0, 150.0}) {
-        const Result r = runCase(setup, {form, window, dipole}, o);
-        std::printf("%9s %8.0f %10.0f %6d %6d %12.3f %12.3f %12.3f %12.3f %12.3f\n",
-                    form.name, window,
-                    dipole, r.cycles, r.failed, r.field_cycle_pct.rms(), r.field_cycle_pct.max,
-                    r.alpha_cycle_deg.rms(), r.alpha_cycle_deg.max, r.field_pct.rms());
-        std::fflush(stdout);
-      }
+      for (const double dipole : {25.0, 50.0, 100.0, 150.0}) row(form, window, dipole);
     }
   }
   return 0;

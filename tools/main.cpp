@@ -179,6 +179,9 @@ int main(int argc, char** argv) {
   s0_cmd->add_option("scenario", s0_study.scenario, "scenario file (plant, sensors, attitude loop)");
   s0_cmd->add_option("--orbits", s0_study.orbits, "simulated orbits per case");
   s0_cmd->add_option("--cycle-s", s0_study.cycle_s, "seconds from one window to the next");
+  s0_cmd->add_option("--form", s0_study.form, "one case only: seed | settle | settle+q | total+q");
+  s0_cmd->add_option("--window-s", s0_study.window_s, "one case only: quiet = pulse length [s]")->check(CLI::PositiveNumber);
+  s0_cmd->add_option("--dipole-Am2", s0_study.dipole_Am2, "one case only: x dipole [A m^2]")->check(CLI::PositiveNumber);
   auto* clean_cmd = app.add_subcommand(
       "clean-shm", "remove Fast DDS shared-memory files no live process uses");
 

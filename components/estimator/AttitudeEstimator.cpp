@@ -100,8 +100,13 @@ AttitudeEstimatorOutput AttitudeEstimator::step(const Input& in, std::int64_t t_
   Output out;
   if (!initialized_) {
     // The Sun is the primary: the sun sensor is far more accurate than the field model.
-    initialized_ = sun_ok && field_ok && triad(s_B, b_B, s_N, b_N, q_NB_);
-    out.sun_used = out.field_used = initialized_;
+    if (sun_ok && params_.sun_only_init) {
+      q_NB_ = Eigen::Quaterniond::FromTwoVectors(s_B, s_N);
+      initialized_ = out.sun_used = true;
+    } else {
+      initialized_ = sun_ok && field_ok && triad(s_B, b_B, s_N, b_N, q_NB_);
+      out.sun_used = out.field_used = initialized_;
+    }
   } else {
     // Mahony, Hamel & Pflimlin 2008, Eq. (32), in quaternion form:
     //   q̇ = ½ q ⊗ (ω_y − b̂ + k_P ω_mes),  ḃ = −k_I ω_mes,  ω_mes = Σ v_i × v̂_i,

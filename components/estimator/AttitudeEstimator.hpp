@@ -16,6 +16,10 @@ struct AttitudeEstimatorParams {
   double ki_per_s2 = 0.002;        // [1/s²] gyro-bias integral gain k_I, >= 0
   double max_bias_rad_s = 0.02;    // [rad/s] clamp of each bias component (anti-windup), > 0
   bool use_magnetometer = true;    // [-] field corrects the filter after initialisation
+  /// [-] no field source in the rig: initialise from the Sun alone (the smallest rotation
+  /// taking the measured Sun onto the reference; the roll about the Sun line is then
+  /// arbitrary, which Sun pointing does not need and seed S0 measures)
+  bool sun_only_init = false;
 
   /// Every violation as "field: reason"; empty when valid.
   std::vector<std::string> validate() const;

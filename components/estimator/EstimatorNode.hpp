@@ -4,17 +4,24 @@
 #include "bus/NodeMain.hpp"
 #include "components/common/LastValid.hpp"
 #include "components/estimator/AttitudeEstimator.hpp"
+#include <optional>
+
 #include "components/estimator/ReferenceModel.hpp"
+#include "components/estimator/S0Estimator.hpp"
 
 namespace flatsat::estimator {
 
 struct EstimatorNodeParams {
   AttitudeEstimatorParams filter;
   ReferenceModelParams reference;
+  std::optional<S0EstimatorParams> s0;  // seed S0 field estimate (components.<name>.s0.enabled)
+  double jd_epoch_utc = 0.0;            // [d] for the ecliptic of date
 };
 
 /// Attitude estimator: gyro, Sun sensor and (when the rig has one)
-/// magnetometer in, attitude estimate out.
+/// magnetometer in, attitude estimate out. With S0 on, it also asks the
+/// unloading controller for coil windows and publishes the field estimate
+/// from the wheel momentum (seed S0, no magnetometer needed).
 class EstimatorNode final : public bus::Component {
  public:
   EstimatorNode(bus::Bus& bus, bus::NodeOptions options, const EstimatorNodeParams& params);
@@ -30,6 +37,15 @@ class EstimatorNode final : public bus::Component {
   LastValid<msg::GyroReading> last_gyro_;  // rides through gyro dropouts
   AttitudeEstimator filter_;
   ReferenceModel reference_;
+
+  void stepS0(const bus::StepContext& ctx, const msg::GyroReading& gyro,
+              const msg::SunSensorReading& sun, const ReferenceVectors& reference);
+  std::optional<S0Estimator> s0_;
+  double jd_epoch_utc_;
+  bus::InputOf<bus::topics::kWheelTach>* tach_ = nullptr;           // S0
+  bus::InputOf<bus::topics::kCoilWindow>* coil_window_ = nullptr;   // S0, feedback
+  bus::WriterOf<bus::topics::kCoilRequest>* coil_request_ = nullptr;
+  bus::WriterOf<bus::topics::kFieldEstimate>* field_estimate_ = nullptr;
 };
 
 /// components.<name>, plus the onboard orbit and field knowledge from the

@@ -6,8 +6,12 @@
 
 #include <Eigen/Dense>
 
+#include <optional>
+
 #include "sim/GeomagneticField.hpp"
 #include "sim/KeplerOrbit.hpp"
+#include "sim/OrbitTrack.hpp"
+#include "sim/SphericalHarmonicField.hpp"
 #include "sim/Time.hpp"
 
 namespace flatsat::estimator {
@@ -18,7 +22,11 @@ namespace flatsat::estimator {
 struct ReferenceModelParams {
   sim::UtcEpoch epoch;               // scenario epoch (t = 0), UTC
   sim::OrbitElements orbit;          // onboard orbit knowledge at the epoch
-  sim::DipoleCoefficients field;     // [nT] onboard field model coefficients
+  sim::OrbitTrackParams orbit_track; // onboard propagator (Kepler, or numerical with its forces)
+  sim::DipoleCoefficients field;     // [nT] onboard field model coefficients (tilted dipole)
+  /// [nT] when set, the onboard field model is this spherical-harmonic model (IGRF, WMM)
+  /// instead of the dipole: seed S0 needs the field's direction to better than a degree.
+  std::optional<sim::GaussCoefficients> field_harmonics;
   std::vector<std::string> validate() const;
 };
 
@@ -31,13 +39,15 @@ class ReferenceModel {
  public:
   using Params = ReferenceModelParams;
   explicit ReferenceModel(const Params& params);
-  void reset() {}
-  ReferenceVectors step(std::int64_t t_ns) const;
+  void reset() { orbit_.reset(); }
+  /// Times must not decrease (the onboard propagator integrates forward).
+  ReferenceVectors step(std::int64_t t_ns);
 
  private:
   Params params_;
-  sim::KeplerOrbit orbit_;
+  sim::OrbitTrack orbit_;
   sim::TiltedDipoleField field_;
+  std::optional<sim::SphericalHarmonicField> harmonics_;
   double jd_epoch_;  // [d] UTC ≈ UT1
 };
 

@@ -23,6 +23,7 @@ std::vector<std::string> S0EstimatorParams::validate() const {
   require(e, cycle_period_s >= quiet_s + pulse_s + settle_s + quiet_after_s &&
                  std::isfinite(cycle_period_s),
           "cycle_period_s", "must be finite and >= quiet_s + pulse_s + settle_s + quiet_after_s");
+  requirePositive(e, "max_sun_offset_rad", max_sun_offset_rad);
   require(e, isNonNegative(average_s) && average_s <= quiet_s / 2, "average_s",
           "must be finite, >= 0 and <= quiet_s / 2");
   return e;
@@ -146,7 +147,9 @@ S0EstimatorOutput S0Estimator::step(const Input& in, std::int64_t t_ns) {
     ++failed_;
     pending_.reset();
   }
-  if (!pending_ && t_ns >= next_request_ns_) {
+  const bool sun_on_x = in.sun_valid && in.sun_B_unit.norm() > 0.0 &&
+                        in.sun_B_unit.normalized().x() >= std::cos(params_.max_sun_offset_rad);
+  if (!pending_ && t_ns >= next_request_ns_ && sun_on_x) {
     S0Request r;
     r.id = next_id_++;
     r.m_B_Am2 = Eigen::Vector3d::UnitX() * (sign_ * params_.dipole_Am2);

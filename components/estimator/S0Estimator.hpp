@@ -28,6 +28,7 @@ struct S0EstimatorParams {
   double cycle_period_s = 600.0;   // [s] from one request to the next, >= the four intervals
   double average_s = 1.0;          // [s] momentum averaging at each instant, >= 0, <= quiet_s / 2
   bool alternate_sign = true;      // [-] flip Mx every cycle so the pulses' impulses cancel
+  double max_sun_offset_rad = 0.0175;  // [rad] a window starts only with body x this close to the Sun, > 0
 
   /// Every violation as "field: reason"; empty when valid.
   std::vector<std::string> validate() const;
@@ -45,6 +46,8 @@ struct S0EstimatorInput {
   bool tach_valid = false;
   Eigen::Vector3d w_B_rad_s = Eigen::Vector3d::Zero();  // [rad/s] gyro
   bool gyro_valid = false;
+  Eigen::Vector3d sun_B_unit = Eigen::Vector3d::Zero();  // [-] measured Sun direction
+  bool sun_valid = false;
   /// [-] R_SE_N: inertial → Sun-ecliptic frame (X Sun, Y in the ecliptic, Z its pole).
   Eigen::Matrix3d R_SE_N = Eigen::Matrix3d::Identity();
   Eigen::Vector3d b_N_ref_T = Eigen::Vector3d::Zero();  // [T] reference field (field model at the orbit position)
@@ -78,6 +81,7 @@ struct S0EstimatorOutput {
 /// body axes is the reference field turned by α: b_B = (BX, BY cos α + BZ sin α,
 /// −BY sin α + BZ cos α). Body x is taken on the Sun, as the attitude loop holds it.
 /// Bx is never measured: it is BX (the seed: "Bx ... equals the reference BX").
+/// A window is asked for only while the Sun sensor sees the Sun on body x.
 class S0Estimator {
  public:
   using Params = S0EstimatorParams;

@@ -79,7 +79,7 @@ TEST_CASE("unloading controller node answers every step with the cross-product l
   bus::Bus node_bus({domain, bus::NetworkProfile::kLoopback, "unloading_controller"});
   ScriptedPeers script(script_bus, {"dynamics_server", master_view});
   unloading_controller::UnloadingControllerNode node(node_bus, {"unloading_controller", node_view},
-                                                     params);
+                                                     {params});
   std::thread node_thread([&] { node.run(); });
   script.run();
   node_thread.join();

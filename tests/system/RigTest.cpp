@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "tests/support/Rig.hpp"
 #include "tests/support/Run.hpp"
 #include "tests/support/TestDomain.hpp"
 
@@ -16,30 +17,13 @@ using namespace flatsat;
 
 namespace {
 
-const std::string kFlatsat = std::string(FLATSAT_BIN_DIR) + "/flatsat";
+using test::kFlatsat;
 const std::string kDefault = std::string(FLATSAT_SCENARIO_DIR) + "/default.yaml";
 
-struct Run {
-  test::CommandResult command;
-  nlohmann::json summary;
-};
+using test::freshDir;
 
-std::string freshDir(const std::string& tag) {
-  const fs::path dir = fs::temp_directory_path() /
-                       ("flatsat-test-" + tag + "-" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  return dir.string();
-}
-
-Run runRig(const std::string& out, const std::string& extra) {
-  test::exportTestDomain();
-  Run run;
-  run.command = test::runCommand(kFlatsat + " run " + kDefault + " -q --out " + out + " " + extra);
-  INFO(run.command.output);
-  REQUIRE(run.command.exit_code == 0);
-  std::ifstream(fs::path(out) / "summary.json") >> run.summary;
-  fs::remove_all(out);  // kept only when the run failed, for its logs
-  return run;
+test::RigRun runRig(const std::string& out, const std::string& extra) {
+  return test::runScenario(kDefault, out, extra);
 }
 
 double momentumGrowth(const nlohmann::json& s) {

@@ -228,3 +228,19 @@ TEST_CASE("Estimator params reject bad values", "[components][estimator]") {
   CHECK(errors[2].rfind("max_bias_rad_s:", 0) == 0);
   CHECK_THROWS_AS(AttitudeEstimator(p), std::invalid_argument);
 }
+
+TEST_CASE("estimator without a field source initialises from the Sun alone", "[estimator]") {
+  AttitudeEstimatorParams p;
+  p.sun_only_init = true;
+  AttitudeEstimator filter(p);
+  const Eigen::Quaterniond q_true =
+      Eigen::Quaterniond(Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, -2, 0.5).normalized()));
+  const Eigen::Vector3d s_N = Eigen::Vector3d(0.3, 0.9, -0.2).normalized();
+  AttitudeEstimatorInput in;
+  in.sun_N_ref_unit = s_N;
+  in.sun_B_meas_unit = q_true.conjugate() * s_N;
+  in.sun_valid = true;  // no field at all
+  const auto out = filter.step(in, 0);
+  REQUIRE(out.initialized);
+  CHECK((out.sun_B_est_unit - in.sun_B_meas_unit).norm() < 1e-12);
+}

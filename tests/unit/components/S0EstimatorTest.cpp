@@ -216,6 +216,8 @@ TEST_CASE("S0 cycle: the estimator asks for windows and tracks the roll angle", 
     in.tach_valid = true;
     in.w_B_rad_s = body.rate();
     in.gyro_valid = true;
+    in.sun_B_unit = Eigen::Vector3d::UnitX();
+    in.sun_valid = t < ns(500.0);  // no new window once the Sun is lost
     in.R_SE_N = Eigen::Matrix3d::Identity();
     in.b_N_ref_T = body.b_SE_T;
     if (running && t == window.t2_ns) {
