@@ -154,6 +154,7 @@ EstimatorNodeParams readParams(const bus::Scenario& scenario, const bus::NodeArg
     s0.read("cycle_period_s", q.cycle_period_s, "s");
     s0.read("average_s", q.average_s, "s");
     s0.read("alternate_sign", q.alternate_sign);
+    s0.read("unloading_sign", q.unloading_sign);
     s0.read("max_sun_offset_rad", q.max_sun_offset_rad, "rad");
     bool total_momentum = false;
     s0.read("total_momentum", total_momentum);

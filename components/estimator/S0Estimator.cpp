@@ -69,6 +69,7 @@ void S0Estimator::reset() {
   alpha_rad_ = 0.0;
   has_last_ = false;
   last_w_B_rad_s_.setZero();
+  h_wheels_B_Nms_.setZero();
   cycles_ = failed_ = 0;
   sign_ = 1.0;
 }
@@ -130,8 +131,8 @@ S0EstimatorOutput S0Estimator::step(const Input& in, std::int64_t t_ns) {
   has_last_ = true;
 
   if (in.tach_valid) {
-    const Eigen::Vector3d h = params_.wheels.momentum_B_Nms(in.wheel_speed_rad_s) +
-                              params_.body_inertia_kg_m2 * w;
+    h_wheels_B_Nms_ = params_.wheels.momentum_B_Nms(in.wheel_speed_rad_s);
+    const Eigen::Vector3d h = h_wheels_B_Nms_ + params_.body_inertia_kg_m2 * w;
     field_.add({t_ns, h, w}, keepSeconds());
   }
   references_.push_back({t_ns, in.R_SE_N * in.b_N_ref_T});
@@ -152,11 +153,16 @@ S0EstimatorOutput S0Estimator::step(const Input& in, std::int64_t t_ns) {
   if (!pending_ && t_ns >= next_request_ns_ && sun_on_x) {
     S0Request r;
     r.id = next_id_++;
+    if (params_.unloading_sign && valid_ && !references_.empty()) {
+      // Cross-product law (Singer 1964): M ∝ H × B, so M × B = −k H⊥.
+      const double x = h_wheels_B_Nms_.cross(s0BodyField(references_.back().b_SE_T, alpha_rad_)).x();
+      if (x != 0.0) sign_ = x > 0.0 ? 1.0 : -1.0;
+    }
     r.m_B_Am2 = Eigen::Vector3d::UnitX() * (sign_ * params_.dipole_Am2);
     r.quiet_s = params_.quiet_s;
     r.pulse_s = params_.pulse_s;
     r.quiet_after_s = params_.settle_s + params_.quiet_after_s;
-    if (params_.alternate_sign) sign_ = -sign_;
+    if (params_.alternate_sign && !(params_.unloading_sign && valid_)) sign_ = -sign_;
     pending_ = r;
     next_request_ns_ = t_ns + toNs(params_.cycle_period_s);
   }

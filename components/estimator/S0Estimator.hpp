@@ -28,6 +28,10 @@ struct S0EstimatorParams {
   double cycle_period_s = 600.0;   // [s] from one request to the next, >= the four intervals
   double average_s = 1.0;          // [s] momentum averaging at each instant, >= 0, <= quiet_s / 2
   bool alternate_sign = true;      // [-] flip Mx every cycle so the pulses' impulses cancel
+  /// [-] once the field is known, give Mx the sign that unloads the stored wheel momentum
+  /// (sign of (H × B)_x, the cross-product law's x coil): the window doubles as an
+  /// unloading pulse (the seed reuses unloading pulses as its windows); overrides alternate_sign
+  bool unloading_sign = false;
   double max_sun_offset_rad = 0.0175;  // [rad] a window starts only with body x this close to the Sun, > 0
 
   /// Every violation as "field: reason"; empty when valid.
@@ -116,6 +120,7 @@ class S0Estimator {
   std::int64_t last_t_ns_ = 0;
   bool has_last_ = false;
   Eigen::Vector3d last_w_B_rad_s_ = Eigen::Vector3d::Zero();
+  Eigen::Vector3d h_wheels_B_Nms_ = Eigen::Vector3d::Zero();  // [Nms] newest stored momentum
   std::uint32_t cycles_ = 0, failed_ = 0;
   double sign_ = 1.0;
 };

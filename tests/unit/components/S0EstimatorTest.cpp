@@ -192,7 +192,64 @@ TEST_CASE("S0: the roll angle round-trips through the body field", "[s0]") {
   CHECK(std::isnan(s0RollAngle(1e-5, 1e-5, 0.0, 0.0)));
 }
 
-TEST_CASE("S0 cycle: the estimator asks for windows and tracks the roll angle", "[s0]") {
+namespace {
+
+struct CycleRun {
+  std::vector<S0Request> requests;
+  std::vector<Eigen::Vector3d> h_at_request;  // [Nms] stored momentum when each was asked
+  std::vector<bool> valid_at_request;
+  double alpha_error_max = 0.0, field_error_max = 0.0;
+  S0EstimatorOutput last;
+};
+
+/// The estimator against the rolling body and a scripted coil owner that starts
+/// each asked window at once and reports it done at its end.
+CycleRun driveCycles(const S0EstimatorParams& p, RollingBody& body, double duration_s) {
+  S0Estimator estimator(p);
+  std::optional<S0Request> running;
+  S0Window window;
+  CycleRun run;
+  bool valid = false;
+  for (std::int64_t t = 0; t <= ns(duration_s); t += kStepNs) {
+    S0EstimatorInput in;
+    in.wheel_speed_rad_s.head<3>() = body.h_B_Nms;
+    in.tach_valid = true;
+    in.w_B_rad_s = body.rate();
+    in.gyro_valid = true;
+    in.sun_B_unit = Eigen::Vector3d::UnitX();
+    in.sun_valid = t < ns(duration_s - 100.0);  // no new window once the Sun is lost
+    in.R_SE_N = Eigen::Matrix3d::Identity();
+    in.b_N_ref_T = body.b_SE_T;
+    if (running && t == window.t2_ns) {
+      in.completed = std::make_pair(running->id, window);
+      running.reset();
+    }
+    run.last = estimator.step(in, t);
+    if (run.last.valid) {
+      const double t_s = static_cast<double>(t) * 1e-9;
+      run.alpha_error_max = std::max(run.alpha_error_max, std::abs(run.last.alpha_rad - body.alpha(t_s)));
+      run.field_error_max = std::max(run.field_error_max, (run.last.b_B_T - body.field(t_s)).norm() /
+                                                              body.field(t_s).norm());
+    }
+    if (run.last.request && !running) {
+      running = run.last.request;
+      run.requests.push_back(*running);
+      run.h_at_request.push_back(body.h_B_Nms);
+      run.valid_at_request.push_back(valid);
+      window.t0_ns = t;
+      window.t1_ns = t + ns(running->quiet_s);
+      window.pulse_end_ns = window.t1_ns + ns(running->pulse_s);
+      window.t2_ns = window.pulse_end_ns + ns(running->quiet_after_s);
+      window.m_B_Am2 = running->m_B_Am2;
+    }
+    valid = run.last.valid;
+    const bool on = running && t >= window.t1_ns && t < window.pulse_end_ns;
+    body.advance(on ? window.m_B_Am2 : Eigen::Vector3d::Zero());
+  }
+  return run;
+}
+
+S0EstimatorParams cycleParams() {
   S0EstimatorParams p;
   p.wheels.count = 3;
   p.wheels.inertia_kg_m2 = Eigen::Vector4d::Ones();  // speeds read as momenta
@@ -202,55 +259,49 @@ TEST_CASE("S0 cycle: the estimator asks for windows and tracks the roll angle", 
   p.cycle_period_s = 120.0;
   p.dipole_Am2 = 100.0;
   p.average_s = 0.0;
-  S0Estimator estimator(p);
-  RollingBody body;
+  return p;
+}
 
-  // A scripted coil owner: starts the asked window at once, reports it at t2.
-  std::optional<S0Request> running;
-  S0Window window;
-  std::vector<double> signs;
-  double alpha_error_max = 0.0, field_error_max = 0.0;
-  for (std::int64_t t = 0; t <= ns(600.0); t += kStepNs) {
-    S0EstimatorInput in;
-    in.wheel_speed_rad_s.head<3>() = body.h_B_Nms;
-    in.tach_valid = true;
-    in.w_B_rad_s = body.rate();
-    in.gyro_valid = true;
-    in.sun_B_unit = Eigen::Vector3d::UnitX();
-    in.sun_valid = t < ns(500.0);  // no new window once the Sun is lost
-    in.R_SE_N = Eigen::Matrix3d::Identity();
-    in.b_N_ref_T = body.b_SE_T;
-    if (running && t == window.t2_ns) {
-      in.completed = std::make_pair(running->id, window);
-      running.reset();
-    }
-    const auto out = estimator.step(in, t);
-    if (out.valid) {
-      const double t_s = static_cast<double>(t) * 1e-9;
-      alpha_error_max = std::max(alpha_error_max, std::abs(out.alpha_rad - body.alpha(t_s)));
-      field_error_max = std::max(field_error_max, (out.b_B_T - body.field(t_s)).norm() /
-                                                      body.field(t_s).norm());
-    }
-    if (out.request && !running) {
-      running = out.request;
-      signs.push_back(out.request->m_B_Am2.x());
-      window.t0_ns = t;
-      window.t1_ns = t + ns(running->quiet_s);
-      window.pulse_end_ns = window.t1_ns + ns(running->pulse_s);
-      window.t2_ns = window.pulse_end_ns + ns(running->quiet_after_s);
-      window.m_B_Am2 = running->m_B_Am2;
-    }
-    const bool on = running && t >= window.t1_ns && t < window.pulse_end_ns;
-    body.advance(on ? window.m_B_Am2 : Eigen::Vector3d::Zero());
-    if (t == ns(600.0)) {
-      CHECK(out.valid);
-      CHECK(out.cycles == 5);
-      CHECK(out.failed_cycles == 0);
-    }
-  }
+}  // namespace
+
+TEST_CASE("S0 cycle: the estimator asks for windows and tracks the roll angle", "[s0]") {
+  RollingBody body;
+  const auto run = driveCycles(cycleParams(), body, 600.0);
+  CHECK(run.last.valid);
+  CHECK(run.last.cycles == 5);
+  CHECK(run.last.failed_cycles == 0);
   // The field over a 20 s pulse turns by ω·10 s = 2e-3 rad from its mid-time value.
-  CHECK(alpha_error_max < 2e-3 * 180 / kPi);
-  CHECK(field_error_max < 3e-3);
-  REQUIRE(signs.size() >= 2);
-  CHECK(signs[0] == -signs[1]);  // the pulses alternate: their impulses cancel
+  CHECK(run.alpha_error_max < 2e-3);
+  CHECK(run.field_error_max < 3e-3);
+  REQUIRE(run.requests.size() == 5);
+  CHECK(run.requests[0].m_B_Am2.x() == -run.requests[1].m_B_Am2.x());  // impulses cancel
+}
+
+TEST_CASE("S0 cycle: with the unloading sign, each pulse drains the stored momentum", "[s0]") {
+  auto p = cycleParams();
+  p.unloading_sign = true;
+  RollingBody body;
+  body.disturbance_B_Nm.setZero();
+  body.w_x = 0.0;
+  const auto run = driveCycles(p, body, 600.0);
+  REQUIRE(run.requests.size() == 5);
+  int unloading_pulses = 0;
+  for (std::size_t i = 0; i < run.requests.size(); ++i) {
+    if (!run.valid_at_request[i]) continue;
+    // The cross-product law's x coil: sign of (H × B)_x; its torque m × B removes H⊥.
+    const Eigen::Vector3d b = body.field(0.0);
+    const double law_x = run.h_at_request[i].cross(b).x();
+    CHECK(run.requests[i].m_B_Am2.x() * law_x > 0.0);
+    ++unloading_pulses;
+  }
+  CHECK(unloading_pulses == 4);
+  // An x dipole's torque lies along u = x × B: each pulse of 100 A m² for 20 s moves
+  // H·u by 100·|x × B|·20 ≈ 0.05 Nms, the first (sign not yet known) either way, the
+  // four others towards zero.
+  const Eigen::Vector3d h0(0.5, 1.5, -2.0);
+  const Eigen::Vector3d u = Eigen::Vector3d::UnitX().cross(body.field(0.0));
+  const double step = 100.0 * u.norm() * 20.0;
+  INFO("H.u from " << h0.dot(u.normalized()) << " to " << body.h_B_Nms.dot(u.normalized()));
+  CHECK(std::abs(body.h_B_Nms.dot(u.normalized())) <
+        std::abs(h0.dot(u.normalized())) - 3 * step + 1e-3);
 }
