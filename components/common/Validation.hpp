@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <iterator>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -83,6 +84,18 @@ inline void requireInRange(std::vector<std::string>& errors, std::string_view fi
                            int hi) {
   require(errors, value >= lo && value <= hi, field,
           "must be in " + std::to_string(lo) + ".." + std::to_string(hi));
+}
+
+/// p itself when p.validate() finds nothing; else throws std::invalid_argument
+/// "<name>: field: reason; field: reason; …" (for constructors' initialiser lists).
+template <class Params>
+const Params& validated(const Params& p, std::string_view name) {
+  const std::vector<std::string> errors = p.validate();
+  if (errors.empty()) return p;
+  std::string message(name);
+  message += ":";
+  for (const auto& e : errors) message += " " + e + ";";
+  throw std::invalid_argument(message);
 }
 
 }  // namespace flatsat

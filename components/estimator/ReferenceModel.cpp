@@ -3,6 +3,7 @@
 
 #include <stdexcept>
 
+#include "components/common/Validation.hpp"
 #include "sim/DynamicsModel.hpp"
 #include "sim/SunEphemeris.hpp"
 
@@ -18,19 +19,8 @@ std::vector<std::string> ReferenceModelParams::validate() const {
   return problems;
 }
 
-namespace {
-const ReferenceModelParams& checked(const ReferenceModelParams& p) {
-  if (auto problems = p.validate(); !problems.empty()) {
-    std::string all;
-    for (const auto& problem : problems) all += problem + "; ";
-    throw std::invalid_argument("ReferenceModelParams: " + all);
-  }
-  return p;
-}
-}  // namespace
-
 ReferenceModel::ReferenceModel(const Params& params)
-    : params_(checked(params)),
+    : params_(validated(params, "ReferenceModelParams")),
       orbit_(params.orbit_track, params.orbit, params.epoch),
       field_(params.field),
       jd_epoch_(sim::julianDate(params.epoch)) {

@@ -30,14 +30,6 @@ std::vector<std::string> S0EstimatorParams::validate() const {
 }
 
 namespace {
-const S0EstimatorParams& checked(const S0EstimatorParams& p) {
-  if (auto problems = p.validate(); !problems.empty()) {
-    std::string all;
-    for (const auto& problem : problems) all += problem + "; ";
-    throw std::invalid_argument("S0EstimatorParams: " + all);
-  }
-  return p;
-}
 constexpr std::int64_t toNs(double s) { return static_cast<std::int64_t>(std::llround(s * 1e9)); }
 }  // namespace
 
@@ -55,7 +47,7 @@ Eigen::Vector3d s0BodyField(const Eigen::Vector3d& b_SE_T, double alpha_rad) {
 }
 
 S0Estimator::S0Estimator(const Params& params)
-    : params_(checked(params)), field_(params.average_s) {
+    : params_(validated(params, "S0EstimatorParams")), field_(params.average_s) {
   reset();
 }
 
