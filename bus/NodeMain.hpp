@@ -32,8 +32,10 @@ QosTuning qosTuning(const Scenario& scenario, std::int32_t ownership_strength);
 /// Loads the scenario, reads the parameters with `read(scenario, name,
 /// problems)`, builds the node with `make(bus, options, params)` and runs it.
 /// Returns the process exit code: 0 done, 1 failed, 2 bad configuration.
+/// Hardware bridges publish at kBridgeStrength, over their emulators.
 template <class Read, class Make>
-int runNode(int argc, char** argv, const std::string& default_name, Read&& read, Make&& make) {
+int runNode(int argc, char** argv, const std::string& default_name, Read&& read, Make&& make,
+            std::int32_t ownership_strength = kEmulatorStrength) {
   const NodeArgs args = parseNodeArgs(argc, argv, default_name);
   try {
     installShutdownHandlers();
@@ -45,7 +47,7 @@ int runNode(int argc, char** argv, const std::string& default_name, Read&& read,
       return 2;
     }
     Bus bus({domainFromEnvironment(scenario.domain_id), profileFromEnvironment(), args.name,
-             qosTuning(scenario, kEmulatorStrength)});
+             qosTuning(scenario, ownership_strength)});
     auto node = make(bus, nodeOptions(scenario, args.name), params);
     node->run();
     return 0;

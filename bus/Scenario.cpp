@@ -7,7 +7,9 @@ namespace flatsat::bus {
 
 Schedule Scenario::schedule() const {
   Schedule schedule;
-  for (const auto& component : components) schedule[component.name] = component.rate_divider;
+  for (const auto& component : components) {
+    if (component.scheduled) schedule[component.name] = component.rate_divider;
+  }
   return schedule;
 }
 
@@ -23,8 +25,12 @@ ParamReader Scenario::componentParams(const std::string& component,
   ParamReader reader(root["components"][component], file, "components." + component, problems);
   std::uint32_t divider = 1;
   bool external = false;
+  std::string role;
+  double start_after_s = 0.0;
   reader.read("rate_divider", divider);  // marks the keys as known; checked at load
   reader.read("external", external);
+  reader.read("role", role);
+  reader.read("start_after_s", start_after_s, "s");
   return reader;
 }
 
@@ -95,7 +101,19 @@ Scenario loadScenario(const std::string& path) {
     reader.read("rate_divider", component.rate_divider);
     bool external = false;
     reader.read("external", external);
-    component.launched = !external;
+    if (external) component.role = "external";
+    reader.read("role", component.role);
+    reader.read("start_after_s", component.start_after_s, "s");
+    if (component.role == "external") {
+      component.launched = false;
+    } else if (component.role == "bridge") {
+      component.scheduled = false;
+    } else if (component.role != "emulated") {
+      reader.problem("role", "must be emulated, bridge or external, not '" + component.role + "'");
+    }
+    if (!(component.start_after_s >= 0.0) || (component.start_after_s > 0.0 && component.role != "bridge")) {
+      reader.problem("start_after_s", "must be >= 0, and only a bridge starts late");
+    }
     if (component.rate_divider < 1 || component.rate_divider > 1000) {
       reader.problem("rate_divider", "must be in 1..1000");
     }

@@ -19,9 +19,17 @@ struct ScenarioError : std::runtime_error {
 struct ComponentEntry {
   std::string name;               ///< component name (= its kind for now)
   std::uint32_t rate_divider = 1; ///< [-] runs when step % divider == 0, 1..1000
-  /// false (`external: true`): runs elsewhere (another host, a real box);
+  /// false (`role: external`): runs elsewhere (another host, a real box);
   /// the launcher does not start it but the rig waits for it on the bus.
   bool launched = true;
+  /// false (`role: bridge`): a hardware bridge or a device stand-in. It is not
+  /// stepped (it publishes as its device delivers, at a higher ownership
+  /// strength than the emulator it overrides) and its death does not stop the
+  /// rig: readers fall back to the emulator.
+  bool scheduled = true;
+  double start_after_s = 0.0;  ///< [s] wall time after the launch before it is started, >= 0
+  /// "emulated", "bridge" or "external", as the scenario names it.
+  std::string role = "emulated";
 };
 
 /// The top level of a scenario file. Component parameters stay as YAML

@@ -5,6 +5,8 @@
 #include "components/estimator/EstimatorNode.hpp"
 #include "components/gyro/GyroNode.hpp"
 #include "components/magnetometer/MagnetometerNode.hpp"
+#include "components/magnetometer_bridge/MagnetometerBridgeNode.hpp"
+#include "components/magnetometer_device/MagnetometerDeviceNode.hpp"
 #include "components/recorder/RecorderNode.hpp"
 #include "components/sun_sensor/SunSensorNode.hpp"
 #include "components/unloading_controller/UnloadingControllerNode.hpp"
@@ -39,6 +41,8 @@ const std::vector<ComponentKind>& componentKinds() {
       kind("attitude_controller", attitude_controller::readParams),
       kind("unloading_controller", unloading_controller::readParams),
       kind("recorder", recorder::readParams),
+      kind("magnetometer_bridge", magnetometer_bridge::readParams),
+      kind("magnetometer_device", magnetometer_device::readParams),
   };
   return kinds;
 }

@@ -37,6 +37,7 @@ struct Child {
   pid_t pid = -1;
   bool running = true;
   std::string log;
+  bool required = true;  // a stepped component: its death stops the rig
 };
 
 pid_t spawn(const std::string& exe, const std::vector<std::string>& args, const std::string& log) {
@@ -157,30 +158,55 @@ LaunchResult launch(const bus::Scenario& scenario, const LaunchOptions& options)
 
   const auto start = Clock::now();
   std::vector<Child> children;
-  for (const auto& component : scenario.components) {
-    if (!component.launched) {
-      spdlog::info("{} is external: waiting for it on the bus", component.name);
-      continue;
-    }
+  std::vector<const bus::ComponentEntry*> late;  // bridges that start after a delay
+  const auto startChild = [&](const bus::ComponentEntry& component) {
     const auto* kind = findComponentKind(component.name);
-    Child child{component.name, -1, true, (logs / (component.name + ".log")).string()};
+    Child child{component.name, -1, true, (logs / (component.name + ".log")).string(),
+                component.scheduled};
     child.pid = spawn((fs::path(options.bin_dir) / kind->executable).string(),
                       {"--scenario", options.scenario_file, "--name", component.name, "--out",
                        options.run_dir, "--log", options.log_level},
                       child.log);
     spdlog::debug("started {} (pid {})", component.name, child.pid);
     children.push_back(child);
+  };
+  for (const auto& component : scenario.components) {
+    if (!component.launched) {
+      spdlog::info("{} is external: waiting for it on the bus", component.name);
+    } else if (component.start_after_s > 0.0) {
+      late.push_back(&component);
+    } else {
+      startChild(component);
+    }
   }
-  result.processes = children.size();
+  result.processes = children.size() + late.size();
 
   auto next_print = Clock::now();
-  std::size_t running = children.size();
-  while (running > 0) {
+  // The run lasts as long as the stepped components; bridges are stopped after.
+  const auto steppedRunning = [&] {
+    std::size_t n = 0;
+    for (const auto& c : children) n += c.running && c.required;
+    return n;
+  };
+  while (steppedRunning() > 0) {
+    for (auto it = late.begin(); it != late.end();) {
+      if (Clock::now() - start >= std::chrono::duration<double>((*it)->start_after_s)) {
+        spdlog::info("starting bridge {} ({} s after launch)", (*it)->name, (*it)->start_after_s);
+        startChild(**it);
+        it = late.erase(it);
+      } else {
+        ++it;
+      }
+    }
     for (auto& c : children) {
       int status = 0;
       if (!c.running || waitpid(c.pid, &status, WNOHANG) != c.pid) continue;
       c.running = false;
-      --running;
+      if (!c.required) {
+        // A bridge that dies is the swap-in case: readers fall back to the emulator.
+        spdlog::warn("bridge {} exited ({}); the emulator takes over", c.name, describeExit(status));
+        continue;
+      }
       if (!(WIFEXITED(status) && WEXITSTATUS(status) == 0) && result.failure.empty()) {
         result.failure = "component '" + c.name + "' died (" + describeExit(status) +
                          "); last lines of " + c.log + ":\n" + tail(c.log, 8);
@@ -193,10 +219,10 @@ LaunchResult launch(const bus::Scenario& scenario, const LaunchOptions& options)
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
-  if (running > 0) {
-    if (result.failure.empty()) result.failure = "interrupted; stopping every component";
-    stopAll(children);
+  if (steppedRunning() > 0 && result.failure.empty()) {
+    result.failure = "interrupted; stopping every component";
   }
+  stopAll(children);
   progress.print(true);
   result.launch_seconds = std::chrono::duration<double>(Clock::now() - start).count();
   result.step_seconds = progress.stepSeconds();

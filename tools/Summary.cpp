@@ -102,21 +102,38 @@ nlohmann::ordered_json summarize(const bus::Scenario& scenario, const std::strin
   // Exclusive ownership delivers one producer's samples at a time, so a
   // change of source on a topic is a hand-over (bridge <-> emulator).
   nlohmann::ordered_json switches = nlohmann::ordered_json::array();
+  nlohmann::ordered_json producers = nlohmann::ordered_json::object();
   bus::forEachTopic([&](const auto& def) {
     if (def.qos != bus::QosKind::kStepped) return;
     std::string previous;
+    nlohmann::ordered_json sources = nlohmann::ordered_json::array();
+    std::uint64_t previous_step = 0;
     recording.forEach(std::string(def.name), [&](std::uint64_t step, const std::string& source,
                                                  const std::vector<std::uint8_t>&) {
       if (!previous.empty() && source != previous) {
+        // gap_s: from the old owner's last sample to the new owner's first, the
+        // time readers had nothing new on the topic.
         switches.push_back({{"time_s", static_cast<double>(step) * scenario.step_s},
                             {"topic", def.name},
                             {"from", previous},
-                            {"to", source}});
+                            {"to", source},
+                            {"gap_s", static_cast<double>(step - previous_step) * scenario.step_s}});
+      }
+      if (source != previous && std::find(sources.begin(), sources.end(), source) == sources.end()) {
+        sources.push_back(source);
       }
       previous = source;
+      previous_step = step;
     });
+    if (!sources.empty()) producers[std::string(def.name)] = sources;
   });
   s["ownership_switches"] = switches;
+  // Who produced each recorded topic (emulator, bridge or external), and each
+  // component's role in the scenario.
+  s["topic_producers"] = producers;
+  nlohmann::ordered_json roles = nlohmann::ordered_json::object();
+  for (const auto& c : scenario.components) roles[c.name] = c.role;
+  s["roles"] = roles;
   s["stale_inputs"] = stale;
   s["overruns"] = overruns;
   addS0Metrics(s, scenario, recording);

@@ -56,8 +56,6 @@ EstimatorNode::EstimatorNode(bus::Bus& bus, bus::NodeOptions options,
     s0_.emplace(*params.s0);
     tach_ = &addInput(bus::topics::kWheelTach);
     coil_window_ = &addFeedbackInput(bus::topics::kCoilWindow);
-    coil_request_ = &addOutput(bus::topics::kCoilRequest);
-    field_estimate_ = &addOutput(bus::topics::kFieldEstimate);
   }
 }
 
@@ -95,7 +93,7 @@ void EstimatorNode::stepS0(const bus::StepContext& ctx, const msg::GyroReading& 
     request.pulse_s(out.request->pulse_s);
     request.quiet_after_s(out.request->quiet_after_s);
   }
-  coil_request_->write(request);
+  coil_request_.write(request);
 
   msg::FieldEstimate field;
   field.header(bus::makeHeader(ctx, name()));
@@ -107,7 +105,7 @@ void EstimatorNode::stepS0(const bus::StepContext& ctx, const msg::GyroReading& 
   bus::put(field.b_cycle_body_T(), out.b_cycle_B_T);
   field.t_cycle_ns(out.t_cycle_ns);
   field.along_dipole_Nm(out.along_dipole_Nm);
-  field_estimate_->write(field);
+  field_estimate_.write(field);
 }
 
 void EstimatorNode::step(const bus::StepContext& ctx) {
@@ -117,7 +115,16 @@ void EstimatorNode::step(const bus::StepContext& ctx) {
   const auto& used = last_gyro_.update(gyro);
   const auto reference = reference_.step(ctx.sim_time_ns);
   const auto sun = sun_.at(ctx.step);
-  if (s0_) stepS0(ctx, used, sun, reference);
+  if (s0_) {
+    stepS0(ctx, used, sun, reference);
+  } else {
+    msg::CoilRequest none;
+    none.header(bus::makeHeader(ctx, name()));
+    coil_request_.write(none);
+    msg::FieldEstimate invalid;
+    invalid.header(bus::makeHeader(ctx, name()));
+    field_estimate_.write(invalid);
+  }
   const auto in = toInput(used, sun, magnetometer, reference);
   auto message = toMessage(filter_.step(in, ctx.sim_time_ns));
   message.header(bus::makeHeader(ctx, name()));

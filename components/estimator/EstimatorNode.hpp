@@ -44,8 +44,10 @@ class EstimatorNode final : public bus::Component {
   double jd_epoch_utc_;
   bus::InputOf<bus::topics::kWheelTach>* tach_ = nullptr;           // S0
   bus::InputOf<bus::topics::kCoilWindow>* coil_window_ = nullptr;   // S0, feedback
-  bus::WriterOf<bus::topics::kCoilRequest>* coil_request_ = nullptr;
-  bus::WriterOf<bus::topics::kFieldEstimate>* field_estimate_ = nullptr;
+  // Published in every rig (not asked, not valid without S0), so the topic set
+  // does not depend on the estimator's configuration.
+  bus::WriterOf<bus::topics::kCoilRequest>& coil_request_ = addOutput(bus::topics::kCoilRequest);
+  bus::WriterOf<bus::topics::kFieldEstimate>& field_estimate_ = addOutput(bus::topics::kFieldEstimate);
 };
 
 /// components.<name>, plus the onboard orbit and field knowledge from the

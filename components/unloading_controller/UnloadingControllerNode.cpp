@@ -54,7 +54,6 @@ UnloadingControllerNode::UnloadingControllerNode(bus::Bus& bus, bus::NodeOptions
   } else {
     field_estimate_ = &addInput(bus::topics::kFieldEstimate);
     coil_request_ = &addInput(bus::topics::kCoilRequest);
-    coil_window_ = &addOutput(bus::topics::kCoilWindow);
   }
 }
 
@@ -81,11 +80,9 @@ void UnloadingControllerNode::step(const bus::StepContext& ctx) {
   message.active(law.active && !coils.window_active);
   message.header(bus::makeHeader(ctx, name()));
   command_.write(message);
-  if (coil_window_ != nullptr) {
-    auto window = toMessage(coils.report);
-    window.header(bus::makeHeader(ctx, name()));
-    coil_window_->write(window);
-  }
+  auto window = toMessage(coils.report);
+  window.header(bus::makeHeader(ctx, name()));
+  coil_window_.write(window);
 }
 
 UnloadingControllerNodeParams readParams(const bus::Scenario& scenario, const bus::NodeArgs& args,

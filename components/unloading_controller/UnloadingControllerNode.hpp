@@ -35,7 +35,7 @@ class UnloadingControllerNode final : public bus::Component {
   bus::InputOf<bus::topics::kMagnetometer>* magnetometer_ = nullptr;   // kMagnetometer
   bus::InputOf<bus::topics::kFieldEstimate>* field_estimate_ = nullptr;  // kS0Estimate
   bus::InputOf<bus::topics::kCoilRequest>* coil_request_ = nullptr;      // kS0Estimate
-  bus::WriterOf<bus::topics::kCoilWindow>* coil_window_ = nullptr;       // kS0Estimate
+  bus::WriterOf<bus::topics::kCoilWindow>& coil_window_ = addOutput(bus::topics::kCoilWindow);
   bus::WriterOf<bus::topics::kDipoleCmd>& command_ = addOutput(bus::topics::kDipoleCmd);
   CrossProductUnloading law_;
   CoilArbiter arbiter_;

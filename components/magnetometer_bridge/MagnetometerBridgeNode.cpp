@@ -1,0 +1,106 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "components/magnetometer_bridge/MagnetometerBridgeNode.hpp"
+
+#include <array>
+#include <cmath>
+#include <chrono>
+#include <filesystem>
+#include <thread>
+
+#include <spdlog/spdlog.h>
+
+#include "bus/Convert.hpp"
+#include "bus/Stamp.hpp"
+#include "components/magnetometer_bridge/SerialPort.hpp"
+
+namespace flatsat::magnetometer_bridge {
+
+MagnetometerBridgeNode::MagnetometerBridgeNode(bus::Bus& bus, bus::NodeOptions options,
+                                               const MagnetometerBridgeNodeParams& params)
+    : Node(bus, std::move(options)),
+      params_(params),
+      bridge_(params.bridge),
+      grants_(bus, bus::topics::kStepGrant, [this](const msg::StepGrant& g) {
+        std::lock_guard lock(grant_mutex_);
+        grant_ = Grant{{g.header().step(), g.header().sim_time_ns(), g.step_period_ns()},
+                       std::chrono::steady_clock::now()};
+      }) {}
+
+std::optional<bus::StepContext> MagnetometerBridgeNode::stepNow() const {
+  std::lock_guard lock(grant_mutex_);
+  if (!grant_ || grant_->step.period_ns <= 0) return std::nullopt;
+  const auto since = std::chrono::duration_cast<std::chrono::nanoseconds>(
+      std::chrono::steady_clock::now() - grant_->seen);
+  const auto periods = static_cast<std::uint64_t>(
+      std::llround(static_cast<double>(since.count()) / static_cast<double>(grant_->step.period_ns)));
+  return bus::StepContext{grant_->step.step + periods,
+                          grant_->step.sim_time_ns + static_cast<std::int64_t>(periods) * grant_->step.period_ns,
+                          grant_->step.period_ns};
+}
+
+void MagnetometerBridgeNode::run() {
+  // The device end may come up after us (a simulator starting, a cable plugged in).
+  const auto deadline = std::chrono::steady_clock::now() + options_.peer_timeout;
+  while (!std::filesystem::exists(params_.device)) {
+    if (interrupted() || std::chrono::steady_clock::now() > deadline) {
+      throw bus::NodeFailure(name() + ": no device at " + params_.device);
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  SerialPort port(params_.device, params_.baud);
+  spdlog::info("{}: reading {} at {} baud", name(), params_.device, params_.baud);
+  publishHealth(msg::ComponentState::RUNNING, 0, "reading " + params_.device);
+
+  std::array<std::uint8_t, 512> buffer{};
+  auto next_health = std::chrono::steady_clock::now();
+  while (!interrupted()) {
+    const long n = port.read(buffer, std::chrono::milliseconds(100));
+    if (n < 0) throw bus::NodeFailure(name() + ": line lost on " + params_.device);
+    for (long i = 0; i < n; ++i) {
+      const auto sample = parser_.push(buffer[static_cast<std::size_t>(i)]);
+      if (!sample) continue;
+      const auto out = bridge_.step(*sample);
+      missed_ += out.missed_samples;
+      const auto step = stepNow();
+      if (!step) continue;  // the rig has not started stepping: no time to stamp it with
+      msg::MagnetometerReading reading;
+      reading.header(bus::makeHeader(*step, name()));
+      bus::put(reading.b_body_T(), out.b_B_T);
+      reading.saturated(out.saturated);
+      reading.valid(true);
+      reading_.write(reading);
+    }
+    if (std::chrono::steady_clock::now() >= next_health) {
+      const auto& c = parser_.counts();
+      publishHealth(msg::ComponentState::RUNNING, c.frames,
+                    "frames " + std::to_string(c.frames) + ", bad crc " + std::to_string(c.bad_crc) +
+                        ", bad header " + std::to_string(c.bad_header) + ", skipped bytes " +
+                        std::to_string(c.skipped_bytes) + ", missed samples " + std::to_string(missed_));
+      next_health += std::chrono::seconds(1);
+    }
+  }
+  publishHealth(msg::ComponentState::STOPPED, parser_.counts().frames, "stopped");
+}
+
+std::string defaultDevicePath(const bus::NodeArgs& args) {
+  return (std::filesystem::path(args.out_dir.empty() ? "." : args.out_dir) / "magnetometer.pty").string();
+}
+
+MagnetometerBridgeNodeParams readParams(const bus::Scenario& scenario, const bus::NodeArgs& args,
+                                        bus::ConfigProblems& problems) {
+  MagnetometerBridgeNodeParams p;
+  p.device = defaultDevicePath(args);
+  auto r = scenario.componentParams(args.name, problems);
+  r.read("device", p.device);
+  r.read("baud", p.baud);
+  r.read("q_body_sensor", p.bridge.q_body_sensor);
+  r.read("range_T", p.bridge.range_T, "T");
+  if (p.baud != 9600 && p.baud != 19200 && p.baud != 38400 && p.baud != 57600 && p.baud != 115200) {
+    r.problem("baud", "must be 9600, 19200, 38400, 57600 or 115200");
+  }
+  r.problems(p.bridge.validate());
+  r.finish();
+  return p;
+}
+
+}  // namespace flatsat::magnetometer_bridge

@@ -1,0 +1,59 @@
+// SPDX-License-Identifier: Apache-2.0
+#pragma once
+#include <chrono>
+#include <mutex>
+#include <optional>
+#include <string>
+
+#include "bus/Node.hpp"
+#include "bus/NodeMain.hpp"
+#include "components/magnetometer_bridge/MagnetometerBridge.hpp"
+
+namespace flatsat::magnetometer_bridge {
+
+struct MagnetometerBridgeNodeParams {
+  MagnetometerBridgeParams bridge;
+  std::string device;  // serial port or pseudo-terminal (default: <run dir>/magnetometer.pty)
+  int baud = 115200;   // [baud] line rate, 9600..115200
+};
+
+/// Hardware bridge (issue "swap-in"): frames from the device's serial line out
+/// as flatsat/magnetometer at the bridge ownership strength, so its samples win
+/// over the emulator's while it lives; when it dies its liveliness lease runs
+/// out and readers fall back to the emulator. Not stepped: each sample is
+/// stamped with the step of its arrival (stepNow()). Bad frames are counted (health)
+/// and never published.
+class MagnetometerBridgeNode final : public bus::Node {
+ public:
+  MagnetometerBridgeNode(bus::Bus& bus, bus::NodeOptions options,
+                         const MagnetometerBridgeNodeParams& params);
+
+  /// Until SIGINT/SIGTERM; throws NodeFailure when the line is lost.
+  void run();
+
+ private:
+  MagnetometerBridgeNodeParams params_;
+  MagnetometerBridge bridge_;
+  FrameParser parser_;
+  std::uint64_t missed_ = 0;
+  /// The step a sample arriving now belongs to: the newest grant plus the whole
+  /// periods since it, rounded (a frame may come just before its step's grant).
+  /// None before the first grant.
+  std::optional<bus::StepContext> stepNow() const;
+  struct Grant {
+    bus::StepContext step;
+    std::chrono::steady_clock::time_point seen;
+  };
+  mutable std::mutex grant_mutex_;
+  std::optional<Grant> grant_;
+  bus::ReaderOf<bus::topics::kStepGrant> grants_;
+  bus::WriterOf<bus::topics::kMagnetometer>& reading_ = addOutput(bus::topics::kMagnetometer);
+};
+
+MagnetometerBridgeNodeParams readParams(const bus::Scenario& scenario, const bus::NodeArgs& args,
+                                        bus::ConfigProblems& problems);
+
+/// The pseudo-terminal path bridge and device simulator agree on by default.
+std::string defaultDevicePath(const bus::NodeArgs& args);
+
+}  // namespace flatsat::magnetometer_bridge

@@ -1,0 +1,71 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "components/magnetometer_bridge/SerialPort.hpp"
+
+#include <fcntl.h>
+#include <poll.h>
+#include <termios.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <stdexcept>
+
+namespace flatsat::magnetometer_bridge {
+
+namespace {
+speed_t speedFor(int baud, const std::string& what) {
+  switch (baud) {
+    case 115200: return B115200;
+    case 57600: return B57600;
+    case 38400: return B38400;
+    case 19200: return B19200;
+    case 9600: return B9600;
+    default: throw std::runtime_error(what + ": unsupported baud rate " + std::to_string(baud));
+  }
+}
+}  // namespace
+
+void makeRaw(int fd, int baud, const std::string& what) {
+  termios tio{};
+  if (tcgetattr(fd, &tio) != 0) {
+    throw std::runtime_error(what + ": not a terminal: " + std::strerror(errno));
+  }
+  cfmakeraw(&tio);
+  tio.c_cflag |= CLOCAL | CREAD;
+  tio.c_cflag &= ~(CSTOPB | CRTSCTS);
+  const speed_t speed = speedFor(baud, what);
+  cfsetispeed(&tio, speed);
+  cfsetospeed(&tio, speed);
+  if (tcsetattr(fd, TCSANOW, &tio) != 0) {
+    throw std::runtime_error(what + ": cannot set raw mode: " + std::strerror(errno));
+  }
+}
+
+SerialPort::SerialPort(const std::string& path, int baud) {
+  fd_ = ::open(path.c_str(), O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
+  if (fd_ < 0) throw std::runtime_error(path + ": cannot open: " + std::strerror(errno));
+  try {
+    makeRaw(fd_, baud, path);
+    tcflush(fd_, TCIFLUSH);  // what the device sent before we listened is stale
+  } catch (...) {
+    ::close(fd_);
+    throw;
+  }
+}
+
+SerialPort::~SerialPort() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
+long SerialPort::read(std::span<std::uint8_t> buffer, std::chrono::milliseconds timeout) {
+  pollfd p{fd_, POLLIN, 0};
+  const int ready = ::poll(&p, 1, static_cast<int>(timeout.count()));
+  if (ready == 0 || (ready < 0 && errno == EINTR)) return 0;
+  if (ready < 0 || (p.revents & (POLLERR | POLLNVAL))) return -1;
+  const ssize_t n = ::read(fd_, buffer.data(), buffer.size());
+  if (n > 0) return n;
+  if (n < 0 && (errno == EAGAIN || errno == EINTR)) return 0;
+  return -1;  // hang-up: the device end closed
+}
+
+}  // namespace flatsat::magnetometer_bridge

@@ -1,0 +1,48 @@
+// SPDX-License-Identifier: Apache-2.0
+// Hardware swap-in: a paced rig whose magnetometer is taken over mid-run by its
+// serial bridge (device simulator on a pseudo-terminal), then handed back to
+// the emulator when the bridge is SIGKILLed.
+#include <catch2/catch.hpp>
+
+#include <chrono>
+#include <future>
+#include <thread>
+
+#include "tests/support/Rig.hpp"
+
+using namespace flatsat;
+
+TEST_CASE("a magnetometer bridge takes over mid-run and the emulator takes back when it dies",
+          "[system][paced][hil]") {
+  const std::string scenario = std::string(FLATSAT_SCENARIO_DIR) + "/hil_magnetometer.yaml";
+  const std::string out = test::freshDir("hil");
+  auto run = std::async(std::launch::async, [&] { return test::runScenario(scenario, out); });
+  // The bridge starts 30 s after the launch (start_after_s); kill it 45 s later.
+  std::this_thread::sleep_for(std::chrono::seconds(75));
+  // [g]: the pattern must not match the shell running pkill itself.
+  const auto kill = test::runCommand("pkill -KILL -f 'flatsat-magnetometer_brid[g]e .*" + out + "'");
+  REQUIRE(kill.exit_code == 0);
+  const auto s = run.get().summary;
+  INFO(s.dump(2));
+
+  CHECK(s["mode"] == "paced");
+  CHECK(s["roles"]["magnetometer_bridge"] == "bridge");
+  CHECK(s["roles"]["magnetometer"] == "emulated");
+  CHECK(s["topic_producers"]["flatsat/magnetometer"] ==
+        nlohmann::json::array({"magnetometer", "magnetometer_bridge"}));
+  const auto& switches = s["ownership_switches"];
+  REQUIRE(switches.size() == 2);
+  // Bridge alive: its samples win from its first one, at most a sample period
+  // (0.1 s; one more for the arrival-time rounding of a real device's sample).
+  CHECK(switches[0]["from"] == "magnetometer");
+  CHECK(switches[0]["to"] == "magnetometer_bridge");
+  CHECK(switches[0]["gap_s"].get<double>() <= 0.2 + 1e-9);
+  CHECK(switches[0]["time_s"].get<double>() > 15.0);
+  // Bridge SIGKILLed: readers fall back once its liveliness lease (0.5 s) runs out.
+  CHECK(switches[1]["from"] == "magnetometer_bridge");
+  CHECK(switches[1]["to"] == "magnetometer");
+  CHECK(switches[1]["gap_s"].get<double>() <= 0.5 + 0.2 + 1e-9);
+  CHECK(switches[1]["time_s"].get<double>() > switches[0]["time_s"].get<double>() + 30.0);
+  // The closed loop never noticed (the default rig's usual error is ~0.14 deg).
+  CHECK(s["pointing_error_deg_max"].get<double>() < 0.5);
+}
