@@ -48,6 +48,8 @@ inline constexpr TopicDef<WheelTorqueCmd, WheelTorqueCmdPubSubType> kWheelTorque
     "flatsat/wheel_torque_cmd", QosKind::kStepped, "attitude_controller"};
 inline constexpr TopicDef<DipoleCmd, DipoleCmdPubSubType> kDipoleCmd{
     "flatsat/dipole_cmd", QosKind::kStepped, "unloading_controller"};
+inline constexpr TopicDef<ThrusterCmd, ThrusterCmdPubSubType> kThrusterCmd{
+    "flatsat/thruster_cmd", QosKind::kStepped, "thruster_sequencer"};
 inline constexpr TopicDef<Health, HealthPubSubType> kHealth{
     "flatsat/health", QosKind::kState, ""};
 inline constexpr TopicDef<FaultCmd, FaultCmdPubSubType> kFaultCmd{
@@ -62,7 +64,7 @@ void forEachTopic(F&& f) {
   using namespace topics;
   f(kStepGrant); f(kStepDone); f(kTruth); f(kMagnetometer); f(kSunSensor); f(kGyro);
   f(kWheelTach); f(kAttitudeEstimate); f(kWheelTorqueCmd); f(kDipoleCmd); f(kHealth);
-  f(kFaultCmd); f(kFaultEvent);
+  f(kFaultCmd); f(kFaultEvent); f(kThrusterCmd);
 }
 
 }  // namespace flatsat::bus

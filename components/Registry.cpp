@@ -7,6 +7,7 @@
 #include "components/magnetometer/MagnetometerNode.hpp"
 #include "components/recorder/RecorderNode.hpp"
 #include "components/sun_sensor/SunSensorNode.hpp"
+#include "components/thruster_sequencer/ThrusterSequencerNode.hpp"
 #include "components/unloading_controller/UnloadingControllerNode.hpp"
 #include "components/wheel_tach/WheelTachNode.hpp"
 #include "sim/DynamicsServerParams.hpp"
@@ -39,6 +40,7 @@ const std::vector<ComponentKind>& componentKinds() {
       kind("attitude_controller", attitude_controller::readParams),
       kind("unloading_controller", unloading_controller::readParams),
       kind("recorder", recorder::readParams),
+      kind("thruster_sequencer", thruster_sequencer::readParams),
   };
   return kinds;
 }
