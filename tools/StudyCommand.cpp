@@ -86,7 +86,7 @@ int runStudy(const StudyOptions& o) {
               sequencer.pulseDeltaRate_rad_s(1) / kDeg, sensor.model.fov_half_angle_rad / kDeg);
   bool all_settled = true;
   for (const double disturbance_Nm : {0.0, o.disturbance_Nm}) {
-    std::vector<double> pulses, settle_s, excursion_deg;
+    std::vector<double> pulses, pulses_to_settle, settle_s, excursion_deg;
     int settled = 0;
     for (auto c : ts::seededCases(o.seed, o.cases, o.max_angle_deg * kDeg, o.max_rate_deg_s * kDeg,
                                   disturbance_Nm, o.duration_s)) {
@@ -94,13 +94,15 @@ int runStudy(const StudyOptions& o) {
       const auto r = ts::runAngleOnlyCase(params, c);
       settled += r.settled;
       pulses.push_back(r.pulses.total);
+      pulses_to_settle.push_back(r.pulses_to_settle);
       settle_s.push_back(r.settle_time_s);
       excursion_deg.push_back(r.max_angle_rad / kDeg);
     }
     all_settled = all_settled && settled == o.cases;
     std::printf("\ndisturbance %.4g N m about the axis: settled %d / %d\n", disturbance_Nm, settled, o.cases);
     std::printf("  %-18s %10s %10s %10s %10s\n", "", "min", "median", "p90", "max");
-    printRow("pulses", pulses);
+    printRow("pulses to settle", pulses_to_settle);
+    printRow("pulses in all", pulses);
     printRow("settle time [s]", settle_s);
     printRow("max |angle| [deg]", excursion_deg);
   }

@@ -32,7 +32,10 @@ AngleOnlyCaseResult runAngleOnlyCase(const AngleOnlySequencerParams& params, con
     const bool seen = std::abs(angle) < setup.fov_half_angle_rad;
     const auto out = sequencer.step({sun_B, seen}, std::llround(t * 1e9));
     result.pulses.add(out.cycle);
-    if (angle > cycle.upper_limit_rad + margin || angle < cycle.lower_limit_rad - margin) inside_since = k + 1;
+    if (angle > cycle.upper_limit_rad + margin || angle < cycle.lower_limit_rad - margin) {
+      inside_since = k + 1;
+      result.pulses_to_settle = result.pulses.total;
+    }
     result.max_angle_rad = std::max(result.max_angle_rad, std::abs(angle - cycle.target_rad));
     const auto fired = thrusters.fire(out.on_time_s, sim::ThrusterGimbals::Zero(), dt);
     const double acceleration = a.dot(inverse_inertia * (fired.torque_B_Nm + setup.disturbance_Nm * a));

@@ -26,6 +26,7 @@ struct AngleOnlyCaseResult {
   double final_rate_rad_s = 0.0;      // [rad/s]
   double max_angle_rad = 0.0;         // [rad] largest |angle − A1| reached
   double settle_time_s = 0.0;         // [s] from here on inside the limit range (± margin)
+  int pulses_to_settle = 0;           // [-] pulses fired before settle_time_s
   bool settled = false;               // inside (± margin) for the last quarter of the run
 };
 
