@@ -32,7 +32,9 @@ void summarizeThrusterSequencer(const bus::Scenario& scenario, const bus::Record
                                 nlohmann::ordered_json& summary) {
   if (!scenario.hasComponent("thruster_sequencer")) return;
   bus::ConfigProblems ignored;  // the scenario was checked before the run
-  const auto params = thruster_sequencer::readParams(scenario, {scenario.file, "thruster_sequencer", ""}, ignored);
+  const auto sequencer = thruster_sequencer::readParams(scenario, {scenario.file, "thruster_sequencer", ""}, ignored);
+  if (sequencer.mode != thruster_sequencer::ThrusterSequencerParams::Mode::kAngleOnly) return;
+  const auto& params = sequencer.angle_only;
   const auto& cycle = params.cycle;
 
   thruster_sequencer::PulseTally tally;

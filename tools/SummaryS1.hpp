@@ -7,7 +7,7 @@
 
 namespace flatsat::tools {
 
-/// Seed S1's figures when the rig has a thruster_sequencer: correction_counts and
+/// Seed S1's figures when the rig has a thruster_sequencer in mode angle_only: correction_counts and
 /// braking_counts (lists, in order), total_pulses, pulse_delta_rate_deg_s, final_angle_deg,
 /// final_rate_deg_s (about the controlled axis, from the truth) and settle_time_s (from
 /// then on inside the limit range with no pulse). Nothing otherwise.

@@ -55,7 +55,8 @@ sim::ThrusterParams thruster(Eigen::Vector3d r, Eigen::Vector3d d) {
 TEST_CASE("thruster sequencer node reads only the Sun sensor and fires the lowering couple",
           "[component][dds]") {
   const std::uint32_t domain = test::testDomain();
-  thruster_sequencer::AngleOnlySequencerParams params;
+  thruster_sequencer::ThrusterSequencerParams node_params;
+  auto& params = node_params.angle_only;
   const Eigen::Vector3d up(0, 0, 0.5), down(0, 0, -0.5), x = Eigen::Vector3d::UnitX();
   params.thrusters = {thruster(up, x), thruster(down, -x), thruster(up, -x), thruster(down, x)};
   params.inertia_B_kg_m2 = Eigen::Vector3d(60.0, 180.0 / std::numbers::pi, 70.0).asDiagonal();
@@ -65,7 +66,7 @@ TEST_CASE("thruster sequencer node reads only the Sun sensor and fires the lower
   bus::Bus script_bus({domain, bus::NetworkProfile::kLoopback, "script"});
   bus::Bus node_bus({domain, bus::NetworkProfile::kLoopback, "thruster_sequencer"});
   ScriptedPeers script(script_bus, {"dynamics_server", master_view});
-  thruster_sequencer::ThrusterSequencerNode node(node_bus, {"thruster_sequencer", node_view}, params);
+  thruster_sequencer::ThrusterSequencerNode node(node_bus, {"thruster_sequencer", node_view}, node_params);
   CHECK(node.inputTopics() == std::vector<std::string>{std::string(bus::topics::kSunSensor.name)});
 
   std::thread node_thread([&] { node.run(); });
