@@ -217,7 +217,7 @@ TEST_CASE("Thruster selection: a couple about the demanded axis, no net force, f
   CHECK(alone.torque_B_Nm.isApprox(Eigen::Vector3d(0, 0.5, 0)));
   CHECK(alone.force_B_N.isApprox(Eigen::Vector3d(1, 0, 0)));
 
-  // A redundant second couple at 1 m takes over when its partner... fails in the first.
+  // A redundant second +y couple at ±1 m restores a pure couple despite the failed thruster.
   table.push_back(thruster({0, 0, 1.0}, Eigen::Vector3d::UnitX()));
   table.push_back(thruster({0, 0, -1.0}, -Eigen::Vector3d::UnitX()));
   const auto backup = selectThrusters(table, Eigen::Vector3d::UnitY(), 1.0);
