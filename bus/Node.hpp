@@ -113,6 +113,12 @@ class Node {
   virtual ~Node();
 
   const std::string& name() const { return options_.name; }
+  /// Names of the topics this node subscribes to as stepped inputs, in order of addInput().
+  std::vector<std::string> inputTopics() const {
+    std::vector<std::string> names;
+    for (const auto& input : inputs_) names.push_back(input->topicName());
+    return names;
+  }
   std::uint32_t dividerOf(const std::string& component) const;
 
  protected:

@@ -55,6 +55,8 @@ inline constexpr TopicDef<WheelTorqueCmd, WheelTorqueCmdPubSubType> kWheelTorque
     "flatsat/wheel_torque_cmd", QosKind::kStepped, "attitude_controller"};
 inline constexpr TopicDef<DipoleCmd, DipoleCmdPubSubType> kDipoleCmd{
     "flatsat/dipole_cmd", QosKind::kStepped, "unloading_controller"};
+inline constexpr TopicDef<ThrusterCmd, ThrusterCmdPubSubType> kThrusterCmd{
+    "flatsat/thruster_cmd", QosKind::kStepped, "thruster_sequencer"};
 inline constexpr TopicDef<Health, HealthPubSubType> kHealth{
     "flatsat/health", QosKind::kState, ""};
 inline constexpr TopicDef<FaultCmd, FaultCmdPubSubType> kFaultCmd{
@@ -70,6 +72,7 @@ void forEachTopic(F&& f) {
   f(kStepGrant); f(kStepDone); f(kTruth); f(kMagnetometer); f(kSunSensor); f(kGyro);
   f(kWheelTach); f(kAttitudeEstimate); f(kWheelTorqueCmd); f(kDipoleCmd); f(kHealth);
   f(kFaultCmd); f(kFaultEvent); f(kFieldEstimate); f(kCoilRequest); f(kCoilWindow);
+  f(kThrusterCmd);
 }
 
 }  // namespace flatsat::bus

@@ -9,6 +9,7 @@
 #include "components/magnetometer_device/MagnetometerDeviceNode.hpp"
 #include "components/recorder/RecorderNode.hpp"
 #include "components/sun_sensor/SunSensorNode.hpp"
+#include "components/thruster_sequencer/ThrusterSequencerNode.hpp"
 #include "components/unloading_controller/UnloadingControllerNode.hpp"
 #include "components/wheel_tach/WheelTachNode.hpp"
 #include "sim/DynamicsServerParams.hpp"
@@ -43,6 +44,7 @@ const std::vector<ComponentKind>& componentKinds() {
       kind("recorder", recorder::readParams),
       kind("magnetometer_bridge", magnetometer_bridge::readParams),
       kind("magnetometer_device", magnetometer_device::readParams),
+      kind("thruster_sequencer", thruster_sequencer::readParams),
   };
   return kinds;
 }

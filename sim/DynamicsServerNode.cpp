@@ -62,6 +62,9 @@ DynamicsServerNode::DynamicsServerNode(bus::Bus& bus, bus::NodeOptions options,
   if (options_.schedule.count(std::string(bus::topics::kDipoleCmd.producer))) {
     dipole_cmd_ = &addInput(bus::topics::kDipoleCmd);
   }
+  if (options_.schedule.count(std::string(bus::topics::kThrusterCmd.producer))) {
+    thruster_cmd_ = &addInput(bus::topics::kThrusterCmd);
+  }
 }
 
 void DynamicsServerNode::publishStep(const bus::StepContext& ctx) {
@@ -83,6 +86,10 @@ void DynamicsServerNode::advance(const bus::StepContext& ctx) {
     const auto dipole = dipole_cmd_->at(ctx.step);
     cmd.dipole_B_Am2 = bus::vec3(dipole.m_body_Am2());
     dipole_cmd_age_steps_ = static_cast<std::int64_t>(ctx.step - dipole.header().step());
+  }
+  if (thruster_cmd_ != nullptr && thruster_cmd_->hasAny(ctx.step)) {
+    const auto on_time_s = thruster_cmd_->at(ctx.step).on_time_s();
+    cmd.thruster_on_time_s = Eigen::Map<const ThrusterVector>(on_time_s.data());
   }
   model_.step(cmd, ctx.sim_time_ns + ctx.period_ns);
 }

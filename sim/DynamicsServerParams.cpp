@@ -157,14 +157,14 @@ void readEnvironment(const bus::Scenario& scenario, bus::ParamReader environment
 }
 
 /// An attitude whose body axis `axis_B` is `offset` away from the Sun at the
-/// epoch: the state a coarse Sun acquisition hands to fine pointing.
+/// epoch, turned about the body axis `tilt_axis_B` (⟂ axis_B): the state a coarse
+/// Sun acquisition hands to fine pointing.
 Eigen::Quaterniond sunOffsetAttitude(const DynamicsParams& p, const Eigen::Vector3d& axis_B,
-                                     double offset_rad) {
+                                     const Eigen::Vector3d& tilt_axis_B, double offset_rad) {
   const double jd_tt = julianDate(p.epoch) + kTtMinusUtc_s / 86400.0;
   const Eigen::Vector3d r_sat = KeplerOrbit(p.orbit).at(0.0).r_N_m;
   const Eigen::Vector3d sun_N = (sunPosition_N_m(jd_tt) - r_sat).normalized();
   const Eigen::Quaterniond align = Eigen::Quaterniond::FromTwoVectors(axis_B, sun_N);
-  const Eigen::Vector3d tilt_axis_B = axis_B.unitOrthogonal();
   return (align * Eigen::Quaterniond(Eigen::AngleAxisd(offset_rad, tilt_axis_B))).normalized();
 }
 
@@ -174,13 +174,19 @@ void readInitial(bus::ParamReader initial, DynamicsParams& p) {
   Eigen::Vector3d axis_B = Eigen::Vector3d::UnitX();
   initial.read("sun_offset_rad", offset_rad, "rad");
   initial.read("sun_offset_axis_body", axis_B, "-");
+  // The S1 checks turn the body about a chosen axis (its controlled axis); by default any
+  // axis normal to the offset axis.
+  Eigen::Vector3d tilt_axis_B = axis_B.norm() < 1e-9 ? Eigen::Vector3d::UnitY() : axis_B.unitOrthogonal();
+  initial.read("sun_offset_tilt_axis_body", tilt_axis_B, "-");
   if (initial.has("sun_offset_rad")) {
     if (initial.has("q_inertial_body")) {
       initial.problem("", "give q_inertial_body or sun_offset_rad, not both");
     } else if (axis_B.norm() < 1e-9) {
       initial.problem("sun_offset_axis_body", "must be a non-zero vector");
+    } else if (tilt_axis_B.norm() < 1e-9 || std::abs(tilt_axis_B.normalized().dot(axis_B.normalized())) > 1e-6) {
+      initial.problem("sun_offset_tilt_axis_body", "must be a non-zero vector normal to sun_offset_axis_body");
     } else if (p.orbit.validate().empty()) {
-      p.q0_NB = sunOffsetAttitude(p, axis_B.normalized(), offset_rad);
+      p.q0_NB = sunOffsetAttitude(p, axis_B.normalized(), tilt_axis_B.normalized(), offset_rad);
     }
   }
   initial.read("w_body_rad_s", p.w0_NB_B_rad_s, "rad/s");

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "tools/Summary.hpp"
+#include "tools/SummaryS1.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -139,6 +140,7 @@ nlohmann::ordered_json summarize(const bus::Scenario& scenario, const std::strin
   addS0Metrics(s, scenario, recording);
   s["recording"] = recording_path;
   s["recording_sha256"] = recording.digest({std::string(bus::topics::kHealth.name)});
+  summarizeThrusterSequencer(scenario, recording, s);
   return s;
 }
 

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 
 #include <CLI/CLI.hpp>
 #include <spdlog/sinks/stdout_color_sinks.h>
@@ -23,6 +24,7 @@
 #include "tools/PlotCommand.hpp"
 #include "tools/RunDirectory.hpp"
 #include "tools/ShmClean.hpp"
+#include "tools/StudyCommand.hpp"
 #include "tools/Summary.hpp"
 #include "tools/TopicsCommand.hpp"
 
@@ -54,6 +56,7 @@ struct RunOptions {
   std::string scenario;
   std::string out;
   std::vector<std::string> overrides;
+  std::optional<std::uint64_t> seed;  // --seed: replaces the scenario's seed
   std::string log_level = "info";
   bool quiet = false;
   bool json = false;
@@ -69,7 +72,9 @@ int run(const RunOptions& o, nlohmann::ordered_json* summary_out = nullptr) {
   }
   bus::Scenario scenario;
   try {
-    const std::string resolved = tools::writeRunScenario(o.scenario, run_dir, o.overrides);
+    auto overrides = o.overrides;
+    if (o.seed) overrides.push_back("seed=" + std::to_string(*o.seed));
+    const std::string resolved = tools::writeRunScenario(o.scenario, run_dir, overrides);
     if (!loadChecked(resolved, run_dir, scenario)) return kExitBadInput;
   } catch (const std::exception& e) {
     std::cerr << "error: " << e.what() << "\n";
@@ -150,6 +155,7 @@ int main(int argc, char** argv) {
   run_cmd->add_option("scenario", run_options.scenario, "scenario file (YAML)")->required();
   run_cmd->add_option("--out", run_options.out, "run directory (default runs/<name>-<time>)");
   run_cmd->add_option("--set", run_options.overrides, "override a scenario key: key.path=value");
+  run_cmd->add_option("--seed", run_options.seed, "scenario seed (replaces seed:)");
   run_cmd->add_option("--log", run_options.log_level, "components' log level");
   run_cmd->add_flag("-q,--quiet", run_options.quiet, "no progress, no table");
   run_cmd->add_flag("--json", run_options.json, "print the summary as JSON");
@@ -172,7 +178,8 @@ int main(int argc, char** argv) {
   const std::vector<CLI::App*> tool_cmds = {
       tools::addTopicsCommand(app, tool_exit), tools::addEchoCommand(app, tool_exit),
       tools::addHzCommand(app, tool_exit),     tools::addHealthCommand(app, tool_exit),
-      tools::addExportCommand(app, tool_exit), tools::addPlotCommand(app, tool_exit)};
+      tools::addExportCommand(app, tool_exit), tools::addPlotCommand(app, tool_exit),
+      tools::addStudyCommand(app, tool_exit)};
 
   tools::S0StudyOptions s0_study{defaultScenario()};
   auto* s0_cmd = app.add_subcommand("s0-study", "seed S0 accuracy over window lengths and dipoles; prints a table");

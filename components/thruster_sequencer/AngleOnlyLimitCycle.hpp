@@ -1,0 +1,97 @@
+// SPDX-License-Identifier: Apache-2.0
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace flatsat::thruster_sequencer {
+
+/// Limit range, pulse intervals of the angle-only correction (seed S1).
+struct AngleOnlyLimitCycleParams {
+  double target_rad = 0.0;                 // [rad] A1, target angle, A2 < A1 < A3
+  double lower_limit_rad = -0.017453292519943295;  // [rad] A2, lower limit angle, < A1
+  double upper_limit_rad = 0.017453292519943295;   // [rad] A3, upper limit angle, > A1
+  double correction_interval_s = 10.0;     // [s] T1, correction pulse period, > T2
+  double braking_interval_s = 1.0;         // [s] T2, braking pulse period, (0, T1)
+
+  /// Every violation as "field: reason"; empty when valid.
+  std::vector<std::string> validate() const;
+};
+
+enum class LimitCyclePhase : std::uint8_t {
+  kAcquiring = 0,   // no correction yet: no n, no pulses, zero crosses ignored
+  kCorrecting = 1,  // outside [A2, A3]: a pulse toward A1 every T1, counting n
+  kCoasting = 2,    // back inside after a correction, waiting for the zero cross
+  kBraking = 3,     // m = ⌊n/2⌋ pulses against the motion every T2
+  kHolding = 4,     // inside, braking done (or m = 0): no pulses until the angle leaves
+};
+
+struct AngleOnlyLimitCycleInput {
+  double angle_rad = 0.0;  // [rad] measured angle about the controlled axis
+  bool valid = false;      // false: no measurement (no pulse, state kept)
+};
+
+struct AngleOnlyLimitCycleOutput {
+  int pulse = 0;  // [-] +1 / −1: one pulse raising / lowering the rate about the axis; 0: none
+  LimitCyclePhase phase = LimitCyclePhase::kAcquiring;  // after this step's decision
+  int correction_count = 0;   // [-] n: pulses of the current (or last) correction
+  int braking_count = 0;      // [-] m = ⌊n/2⌋ of the current (or last) braking
+  int braking_remaining = 0;  // [-] braking pulses still to fire
+  bool braking = false;       // [-] the pulse is a braking pulse (else a correction pulse)
+};
+
+/// Pulse counts per correction and per braking, in order, rebuilt from the decisions.
+struct PulseTally {
+  std::vector<int> correction_counts;  // [-] n of each correction
+  std::vector<int> braking_counts;     // [-] pulses of each braking
+  int total = 0;                       // [-] every pulse
+
+  void add(const AngleOnlyLimitCycleOutput& out);
+};
+
+/// Attitude correction from the attitude angle alone (JP2773738B2, claims 1-4; flatsat spec
+/// algorithms.md S1). Outside the limit range [A2, A3] a pulse toward the target A1 fires
+/// every T1 until the angle is back inside; their number n is kept (claim 4's memory). At the
+/// next zero cross (the angle passes A1) m = ⌊n/2⌋ pulses fire every T2 against the motion
+/// (claim 3: n/2 for even n, (n−1)/2 for odd n): a correction that stopped a drift and
+/// brought the angle back used about half its pulses to reverse the rate, so half of them
+/// stop it again. The direction of the motion at the zero cross is known without a rate
+/// sensor: the angle comes from the side it was corrected on. The m pulses are one command
+/// and run to their end even if the angle leaves the range meanwhile; correction resumes
+/// after them. One instance per controlled axis.
+class AngleOnlyLimitCycle {
+ public:
+  using Params = AngleOnlyLimitCycleParams;
+  using Input = AngleOnlyLimitCycleInput;
+  using Output = AngleOnlyLimitCycleOutput;
+
+  /// @throws std::invalid_argument listing every violation of params.validate().
+  explicit AngleOnlyLimitCycle(const Params& params);
+
+  /// Back to acquisition: no n, no pending braking.
+  void reset();
+
+  /// Decides this step's pulse from the angle sampled at t_ns [ns].
+  Output step(const Input& in, std::int64_t t_ns);
+
+  const Params& params() const { return params_; }
+
+ private:
+  bool pulseDue(std::int64_t t_ns, std::int64_t interval_ns) const;
+  Output fire(int direction, bool braking, std::int64_t t_ns);
+  Output report(int pulse, bool braking = false) const;
+
+  Params params_;
+  std::int64_t correction_interval_ns_;
+  std::int64_t braking_interval_ns_;
+  LimitCyclePhase phase_ = LimitCyclePhase::kAcquiring;
+  int side_ = 0;  // +1: corrected beyond A3, −1: beyond A2 (the side the zero cross comes from)
+  int correction_count_ = 0;
+  int braking_count_ = 0;
+  int braking_remaining_ = 0;
+  bool fired_ = false;            // a pulse of the current phase has fired
+  std::int64_t last_pulse_ns_ = 0;
+};
+
+}  // namespace flatsat::thruster_sequencer

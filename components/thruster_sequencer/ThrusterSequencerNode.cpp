@@ -1,0 +1,125 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "components/thruster_sequencer/ThrusterSequencerNode.hpp"
+
+#include "bus/Convert.hpp"
+#include "components/sun_sensor/SunSensorNode.hpp"
+#include "sim/DynamicsServerParams.hpp"
+
+namespace flatsat::thruster_sequencer {
+
+namespace {
+
+msg::ThrusterCmd toMessage(const AngleOnlySequencerOutput& out, double pulse_delta_rate_rad_s, bool angle_valid) {
+  msg::ThrusterCmd m;
+  bus::put(m.on_time_s(), out.on_time_s);
+  m.angle_rad(out.angle_rad);
+  m.angle_valid(angle_valid);
+  m.phase(static_cast<std::uint8_t>(out.cycle.phase));
+  m.pulse(static_cast<std::int16_t>(out.cycle.pulse));
+  m.braking(out.cycle.braking);
+  m.correction_count(out.cycle.correction_count);
+  m.braking_count(out.cycle.braking_count);
+  m.braking_remaining(out.cycle.braking_remaining);
+  m.pulse_delta_rate_rad_s(pulse_delta_rate_rad_s);
+  return m;
+}
+
+msg::ThrusterCmd toMessage(const ThrusterMomentumDumpingOutput& out) {
+  msg::ThrusterCmd m;
+  bus::put(m.on_time_s(), out.on_time_s);
+  m.dumping(out.active);
+  bus::put(m.h_wheels_body_Nms(), out.h_B_Nms);
+  return m;
+}
+
+void readAngleOnly(bus::ParamReader& r, AngleOnlySequencerParams& p) {
+  r.read("axis_body", p.axis_B, "-");
+  r.read("target_rad", p.cycle.target_rad, "rad");
+  r.read("lower_limit_rad", p.cycle.lower_limit_rad, "rad");
+  r.read("upper_limit_rad", p.cycle.upper_limit_rad, "rad");
+  r.read("correction_interval_s", p.cycle.correction_interval_s, "s");
+  r.read("braking_interval_s", p.cycle.braking_interval_s, "s");
+  r.read("pulse_on_time_s", p.pulse_on_time_s, "s");
+  r.read("max_duty", p.max_duty, "-");
+  r.read("force_weight_m", p.force_weight_m, "m");
+}
+
+void readDumping(bus::ParamReader& r, ThrusterMomentumDumpingParams& p) {
+  r.read("h_start_Nms", p.h_start_Nms, "N m s");
+  r.read("h_stop_Nms", p.h_stop_Nms, "N m s");
+  r.read("max_duty", p.max_duty, "-");
+  r.read("force_weight_m", p.force_weight_m, "m");
+}
+
+}  // namespace
+
+ThrusterSequencerNode::ThrusterSequencerNode(bus::Bus& bus, bus::NodeOptions options,
+                                             const ThrusterSequencerParams& params)
+    : Component(bus, std::move(options)) {
+  if (params.mode == ThrusterSequencerParams::Mode::kAngleOnly) {
+    sun_ = &addInput(bus::topics::kSunSensor);
+    sequencer_.emplace(params.angle_only);
+    thruster_count_ = params.angle_only.thrusters.size();
+  } else {
+    tach_ = &addInput(bus::topics::kWheelTach);
+    dumping_.emplace(params.dumping);
+    thruster_count_ = params.dumping.thrusters.size();
+  }
+}
+
+void ThrusterSequencerNode::step(const bus::StepContext& ctx) {
+  msg::ThrusterCmd message;
+  if (sequencer_) {
+    const auto sun = sun_->at(ctx.step);
+    message = toMessage(sequencer_->step({bus::vec3(sun.sun_body_unit()), sun.valid()}, ctx.sim_time_ns),
+                        sequencer_->pulseDeltaRate_rad_s(1), sun.valid());
+  } else {
+    const auto tach = tach_->at(ctx.step);
+    if (tach.valid()) last_speed_rad_s_ = bus::vec4(tach.wheel_speed_rad_s());
+    message = toMessage(dumping_->step(last_speed_rad_s_, ctx.sim_time_ns));
+  }
+  message.thruster_count(static_cast<std::uint32_t>(thruster_count_));
+  message.header(bus::makeHeader(ctx, name()));
+  command_.write(message);
+}
+
+ThrusterSequencerParams readParams(const bus::Scenario& scenario, const bus::NodeArgs& args,
+                                   bus::ConfigProblems& problems) {
+  bus::ConfigProblems reported_by_their_owners;  // the dynamics server and the Sun sensor
+  const auto plant = sim::readPlant(scenario, reported_by_their_owners);
+  const auto schedule = scenario.schedule();
+  const double step_s = scenario.step_s * (schedule.count(args.name) ? schedule.at(args.name) : 1U);
+  ThrusterSequencerParams p;
+  auto r = scenario.componentParams(args.name, problems);
+  std::string mode = "angle_only";
+  r.read("mode", mode);
+  if (mode == "momentum_dumping") {
+    p.mode = ThrusterSequencerParams::Mode::kMomentumDumping;
+    auto& d = p.dumping;
+    d.thrusters = plant.thrusters;
+    d.wheels = {plant.body.wheel_count, plant.body.wheel_axes_B, plant.body.wheel_inertia_kg_m2};
+    d.step_s = step_s;
+    if (!scenario.hasComponent("wheel_tach")) r.problem("mode", "momentum_dumping needs a wheel_tach in the rig");
+    readDumping(r, d);
+    r.problems(d.validate());
+  } else if (mode == "angle_only") {
+    auto& a = p.angle_only;
+    a.thrusters = plant.thrusters;
+    a.inertia_B_kg_m2 = plant.body.J_B_kg_m2;
+    a.step_s = step_s;
+    if (scenario.hasComponent("sun_sensor")) {
+      a.boresight_B = sun_sensor::readParams(scenario, {args.scenario, "sun_sensor", ""}, reported_by_their_owners)
+                          .model.boresight_B;
+    } else {
+      r.problem("", "needs a sun_sensor in the rig (its angle is the only input)");
+    }
+    readAngleOnly(r, a);
+    r.problems(a.validate());
+  } else {
+    r.problem("mode", "'" + mode + "' is neither angle_only nor momentum_dumping");
+  }
+  r.finish();
+  return p;
+}
+
+}  // namespace flatsat::thruster_sequencer

@@ -1,0 +1,45 @@
+// SPDX-License-Identifier: Apache-2.0
+#pragma once
+#include <optional>
+
+#include "bus/Component.hpp"
+#include "bus/NodeMain.hpp"
+#include "components/thruster_sequencer/AngleOnlySequencer.hpp"
+#include "components/thruster_sequencer/ThrusterMomentumDumping.hpp"
+
+namespace flatsat::thruster_sequencer {
+
+/// What the sequencer does; each mode reads its own input only.
+struct ThrusterSequencerParams {
+  enum class Mode { kAngleOnly, kMomentumDumping };
+  Mode mode = Mode::kAngleOnly;               // [-] `mode: angle_only | momentum_dumping`
+  AngleOnlySequencerParams angle_only;        // [-] used in kAngleOnly (see there)
+  ThrusterMomentumDumpingParams dumping;      // [-] used in kMomentumDumping (see there)
+};
+
+/// Thruster on-times on the bus. angle_only (seed S1): the Sun sensor's reading is the only
+/// input; no rate of any kind (gyro, estimate) is read, the angle-only law needs none.
+/// momentum_dumping: the wheel tachometers only; the attitude controller holds the attitude.
+class ThrusterSequencerNode final : public bus::Component {
+ public:
+  ThrusterSequencerNode(bus::Bus& bus, bus::NodeOptions options, const ThrusterSequencerParams& params);
+
+ private:
+  void step(const bus::StepContext& ctx) override;
+
+  bus::WriterOf<bus::topics::kThrusterCmd>& command_ = addOutput(bus::topics::kThrusterCmd);
+  bus::InputOf<bus::topics::kSunSensor>* sun_ = nullptr;   // angle_only
+  bus::InputOf<bus::topics::kWheelTach>* tach_ = nullptr;  // momentum_dumping
+  std::size_t thruster_count_;
+  std::optional<AngleOnlySequencer> sequencer_;
+  std::optional<ThrusterMomentumDumping> dumping_;
+  Eigen::Vector4d last_speed_rad_s_ = Eigen::Vector4d::Zero();  // rides through tachometer dropouts
+};
+
+/// components.<name>: the mode and its parameters; the thruster table, inertia and wheels
+/// from spacecraft, the boresight from components.sun_sensor, the step from step_s and
+/// the rate divider.
+ThrusterSequencerParams readParams(const bus::Scenario& scenario, const bus::NodeArgs& args,
+                                   bus::ConfigProblems& problems);
+
+}  // namespace flatsat::thruster_sequencer
