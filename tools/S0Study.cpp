@@ -221,7 +221,7 @@ int runS0Study(const S0StudyOptions& o) {
         return 0;
       }
     }
-    std::fprintf(stderr, "s0-study: --form %s: must be seed, settle, settle+q or total+q\n", o.form.c_str());
+    std::fprintf(stderr, "study s0: --form %s: must be seed, settle, settle+q or total+q\n", o.form.c_str());
     return 2;
   }
   for (const Form& form : kForms) {

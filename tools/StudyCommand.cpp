@@ -16,6 +16,7 @@
 #include "components/thruster_sequencer/AngleOnlyCase.hpp"
 #include "components/thruster_sequencer/ThrusterSequencerNode.hpp"
 #include "tools/RunDirectory.hpp"
+#include "tools/S0Study.hpp"
 
 namespace flatsat::tools {
 
@@ -130,6 +131,19 @@ CLI::App* addStudyCommand(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   s1->add_option("--duration-s", options->duration_s, "simulated time per case [s]")->capture_default_str();
   s1->callback([options, &exit_code] { exit_code = runStudy(*options); });
+
+  auto s0_options = std::make_shared<S0StudyOptions>();
+  s0_options->scenario = std::string(FLATSAT_SOURCE_SCENARIO_DIR) + "/s0_no_magnetometer.yaml";
+  auto* s0 = study->add_subcommand("s0", "S0 field and roll accuracy over window lengths and dipoles");
+  s0->add_option("scenario", s0_options->scenario, "scenario (plant, sensors, attitude loop)")->capture_default_str();
+  s0->add_option("--orbits", s0_options->orbits, "simulated orbits per case")->capture_default_str();
+  s0->add_option("--cycle-s", s0_options->cycle_s, "seconds from one window to the next")->capture_default_str();
+  s0->add_option("--form", s0_options->form, "one case only: seed | settle | settle+q | total+q");
+  s0->add_option("--window-s", s0_options->window_s, "one case only: quiet = pulse length [s]")
+      ->check(CLI::PositiveNumber);
+  s0->add_option("--dipole-Am2", s0_options->dipole_Am2, "one case only: x dipole [A m^2]")
+      ->check(CLI::PositiveNumber);
+  s0->callback([s0_options, &exit_code] { exit_code = runS0Study(*s0_options); });
   return study;
 }
 

@@ -20,7 +20,6 @@
 #include "tools/Launcher.hpp"
 #include "tools/OrbitCommand.hpp"
 #include "tools/PhysicsBench.hpp"
-#include "tools/S0Study.hpp"
 #include "tools/PlotCommand.hpp"
 #include "tools/RunDirectory.hpp"
 #include "tools/ShmClean.hpp"
@@ -181,14 +180,6 @@ int main(int argc, char** argv) {
       tools::addExportCommand(app, tool_exit), tools::addPlotCommand(app, tool_exit),
       tools::addStudyCommand(app, tool_exit)};
 
-  tools::S0StudyOptions s0_study{defaultScenario()};
-  auto* s0_cmd = app.add_subcommand("s0-study", "seed S0 accuracy over window lengths and dipoles; prints a table");
-  s0_cmd->add_option("scenario", s0_study.scenario, "scenario file (plant, sensors, attitude loop)");
-  s0_cmd->add_option("--orbits", s0_study.orbits, "simulated orbits per case");
-  s0_cmd->add_option("--cycle-s", s0_study.cycle_s, "seconds from one window to the next");
-  s0_cmd->add_option("--form", s0_study.form, "one case only: seed | settle | settle+q | total+q");
-  s0_cmd->add_option("--window-s", s0_study.window_s, "one case only: quiet = pulse length [s]")->check(CLI::PositiveNumber);
-  s0_cmd->add_option("--dipole-Am2", s0_study.dipole_Am2, "one case only: x dipole [A m^2]")->check(CLI::PositiveNumber);
   auto* clean_cmd = app.add_subcommand(
       "clean-shm", "remove Fast DDS shared-memory files no live process uses");
 
@@ -203,7 +194,6 @@ int main(int argc, char** argv) {
     for (const auto& name : tools::cleanStaleSharedMemory()) std::cout << "removed " << name << "\n";
     return 0;
   }
-  if (s0_cmd->parsed()) return tools::runS0Study(s0_study);
   if (bench_cmd->parsed()) return bench(bench_scenario, bench_duration_s);
   bus::Scenario scenario;
   if (!loadChecked(check_file, "", scenario)) return kExitBadInput;

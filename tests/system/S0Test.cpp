@@ -35,11 +35,11 @@ TEST_CASE("S0 closed loop without a magnetometer keeps the momentum bounded over
 
 TEST_CASE("S0 accuracy at the best setting: field under 5 %, roll under 2 deg",
           "[system][s0]") {
-  // flatsat s0-study's best row (docs/s0_study.md): 60 s windows, the whole x
+  // flatsat study s0's best row (docs/s0_study.md): 60 s windows, the whole x
   // coil, settle and quiet interval after the pulse; one orbit of the default
   // orbit with the plant's disturbances (gravity gradient, drag, solar pressure).
   const auto result = test::runCommand(
-      test::kFlatsat + " s0-study " + kS0 + " --form settle+q --window-s 60 --dipole-Am2 150 --orbits 1");
+      test::kFlatsat + " study s0 " + kS0 + " --form settle+q --window-s 60 --dipole-Am2 150 --orbits 1");
   INFO(result.output);
   REQUIRE(result.exit_code == 0);
   std::istringstream last(result.output.substr(result.output.rfind("settle+q")));
