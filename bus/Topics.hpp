@@ -10,6 +10,7 @@
 #include "msg/EstimationPubSubTypes.h"
 #include "msg/FaultsPubSubTypes.h"
 #include "msg/HealthPubSubTypes.h"
+#include "msg/ModesPubSubTypes.h"
 #include "msg/SensorsPubSubTypes.h"
 #include "msg/StepPubSubTypes.h"
 #include "msg/TruthPubSubTypes.h"
@@ -54,6 +55,8 @@ inline constexpr TopicDef<FaultCmd, FaultCmdPubSubType> kFaultCmd{
     "flatsat/fault_cmd", QosKind::kCommand, ""};
 inline constexpr TopicDef<FaultEvent, FaultEventPubSubType> kFaultEvent{
     "flatsat/fault_event", QosKind::kCommand, ""};
+inline constexpr TopicDef<ModeCmd, ModeCmdPubSubType> kUnloadingModeCmd{
+    "flatsat/unloading_mode_cmd", QosKind::kCommand, ""};
 }  // namespace topics
 
 /// Calls f(def) for every topic of the registry (recorder, tools).
@@ -63,6 +66,7 @@ void forEachTopic(F&& f) {
   f(kStepGrant); f(kStepDone); f(kTruth); f(kMagnetometer); f(kSunSensor); f(kGyro);
   f(kWheelTach); f(kAttitudeEstimate); f(kWheelTorqueCmd); f(kDipoleCmd); f(kHealth);
   f(kFaultCmd); f(kFaultEvent);
+  f(kUnloadingModeCmd);
 }
 
 }  // namespace flatsat::bus

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 
 #include <CLI/CLI.hpp>
 #include <spdlog/sinks/stdout_color_sinks.h>
@@ -17,6 +18,7 @@
 #include "tools/HealthCommand.hpp"
 #include "tools/HzCommand.hpp"
 #include "tools/Launcher.hpp"
+#include "tools/MagneticStudy.hpp"
 #include "tools/OrbitCommand.hpp"
 #include "tools/PhysicsBench.hpp"
 #include "tools/PlotCommand.hpp"
@@ -56,6 +58,7 @@ struct RunOptions {
   std::string log_level = "info";
   bool quiet = false;
   bool json = false;
+  std::optional<std::uint64_t> seed;  // replaces the scenario's seed (dispersed initial conditions, noise)
 };
 
 int run(const RunOptions& o, nlohmann::ordered_json* summary_out = nullptr) {
@@ -68,7 +71,9 @@ int run(const RunOptions& o, nlohmann::ordered_json* summary_out = nullptr) {
   }
   bus::Scenario scenario;
   try {
-    const std::string resolved = tools::writeRunScenario(o.scenario, run_dir, o.overrides);
+    auto overrides = o.overrides;
+    if (o.seed) overrides.push_back("seed=" + std::to_string(*o.seed));
+    const std::string resolved = tools::writeRunScenario(o.scenario, run_dir, overrides);
     if (!loadChecked(resolved, run_dir, scenario)) return kExitBadInput;
   } catch (const std::exception& e) {
     std::cerr << "error: " << e.what() << "\n";
@@ -152,6 +157,7 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--log", run_options.log_level, "components' log level");
   run_cmd->add_flag("-q,--quiet", run_options.quiet, "no progress, no table");
   run_cmd->add_flag("--json", run_options.json, "print the summary as JSON");
+  run_cmd->add_option("--seed", run_options.seed, "scenario seed: dispersed initial conditions and noise");
 
   std::string check_file;
   auto* check_cmd = app.add_subcommand("check", "check a scenario without running it");
@@ -167,6 +173,8 @@ int main(int argc, char** argv) {
   auto* orbit_cmd = tools::addOrbitCommand(app, orbit_exit);
   int field_exit = 0;
   auto* field_cmd = tools::addFieldCommand(app, field_exit);
+  int study_exit = 0;
+  auto* study_cmd = tools::addStudyCommand(app, study_exit);
   int tool_exit = 0;
   const std::vector<CLI::App*> tool_cmds = {
       tools::addTopicsCommand(app, tool_exit), tools::addEchoCommand(app, tool_exit),
@@ -180,6 +188,7 @@ int main(int argc, char** argv) {
   if (run_cmd->parsed()) return run(run_options);
   if (orbit_cmd->parsed()) return orbit_exit;
   if (field_cmd->parsed()) return field_exit;
+  if (study_cmd->parsed()) return study_exit;
   for (auto* tool : tool_cmds) {
     if (tool->parsed()) return tool_exit;
   }

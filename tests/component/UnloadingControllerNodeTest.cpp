@@ -64,12 +64,12 @@ TEST_CASE("unloading controller node answers every step with the cross-product l
   axes.col(1) = Eigen::Vector3d::UnitY();
   axes.col(2) = Eigen::Vector3d::UnitZ();
 
-  unloading_controller::CrossProductUnloadingParams params;
-  params.gain_per_s = kGain;
-  params.max_dipole_Am2 = Eigen::Vector3d::Constant(kMaxDipole);
-  params.wheels.count = 3;
-  params.wheels.axes_B = axes;
-  params.wheels.inertia_kg_m2 = Eigen::Vector4d(kWheelInertia, kWheelInertia, kWheelInertia, 0);
+  unloading_controller::MagneticModesParams params;  // initial mode: unload
+  params.unload.gain_per_s = kGain;
+  params.unload.max_dipole_Am2 = Eigen::Vector3d::Constant(kMaxDipole);
+  params.unload.wheels.count = 3;
+  params.unload.wheels.axes_B = axes;
+  params.unload.wheels.inertia_kg_m2 = Eigen::Vector4d(kWheelInertia, kWheelInertia, kWheelInertia, 0);
 
   const bus::Schedule node_view = {
       {"dynamics_server", 1}, {"unloading_controller", 1}, {"wheel_tach", 1}, {"magnetometer", 1}};
