@@ -11,6 +11,7 @@
 #include "msg/EstimationPubSubTypes.h"
 #include "msg/FaultsPubSubTypes.h"
 #include "msg/HealthPubSubTypes.h"
+#include "msg/ModesPubSubTypes.h"
 #include "msg/SensorsPubSubTypes.h"
 #include "msg/StepPubSubTypes.h"
 #include "msg/TruthPubSubTypes.h"
@@ -63,6 +64,8 @@ inline constexpr TopicDef<FaultCmd, FaultCmdPubSubType> kFaultCmd{
     "flatsat/fault_cmd", QosKind::kCommand, ""};
 inline constexpr TopicDef<FaultEvent, FaultEventPubSubType> kFaultEvent{
     "flatsat/fault_event", QosKind::kCommand, ""};
+inline constexpr TopicDef<ModeCmd, ModeCmdPubSubType> kUnloadingModeCmd{
+    "flatsat/unloading_mode_cmd", QosKind::kCommand, ""};
 }  // namespace topics
 
 /// Calls f(def) for every topic of the registry (recorder, tools).
@@ -73,6 +76,7 @@ void forEachTopic(F&& f) {
   f(kWheelTach); f(kAttitudeEstimate); f(kWheelTorqueCmd); f(kDipoleCmd); f(kHealth);
   f(kFaultCmd); f(kFaultEvent); f(kFieldEstimate); f(kCoilRequest); f(kCoilWindow);
   f(kThrusterCmd);
+  f(kUnloadingModeCmd);
 }
 
 }  // namespace flatsat::bus

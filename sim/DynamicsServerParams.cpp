@@ -9,6 +9,7 @@
 #include "sim/Constants.hpp"
 #include "sim/DynamicsServerSections.hpp"
 #include "sim/GeomagneticCoefficients.hpp"
+#include "sim/InitialDispersion.hpp"
 #include "sim/SunEphemeris.hpp"
 
 namespace flatsat::sim {
@@ -168,7 +169,10 @@ Eigen::Quaterniond sunOffsetAttitude(const DynamicsParams& p, const Eigen::Vecto
   return (align * Eigen::Quaterniond(Eigen::AngleAxisd(offset_rad, tilt_axis_B))).normalized();
 }
 
-void readInitial(bus::ParamReader initial, DynamicsParams& p) {
+/// initial.tumble_rate_rad_s: a tumble dispersed by the scenario's seed (`flatsat
+/// run --seed N`): attitude uniform over SO(3), rate of that size about a uniform
+/// axis (sim/InitialDispersion.hpp); it replaces the attitude and rate keys.
+void readInitial(bus::ParamReader initial, DynamicsParams& p, std::uint64_t seed) {
   initial.read("q_inertial_body", p.q0_NB);
   double offset_rad = 0.0;
   Eigen::Vector3d axis_B = Eigen::Vector3d::UnitX();
@@ -191,6 +195,20 @@ void readInitial(bus::ParamReader initial, DynamicsParams& p) {
   }
   initial.read("w_body_rad_s", p.w0_NB_B_rad_s, "rad/s");
   initial.read("wheel_speed_rad_s", p.wheel_speed0_rad_s, "rad/s");
+  double tumble_rate_rad_s = 0.0;
+  initial.read("tumble_rate_rad_s", tumble_rate_rad_s, "rad/s");
+  if (initial.has("tumble_rate_rad_s")) {
+    for (const char* key : {"q_inertial_body", "sun_offset_rad", "w_body_rad_s"}) {
+      if (initial.has(key)) initial.problem(key, "not with tumble_rate_rad_s (the seed draws the tumble)");
+    }
+    if (!(tumble_rate_rad_s >= 0.0 && std::isfinite(tumble_rate_rad_s))) {
+      initial.problem("tumble_rate_rad_s", "must be finite and >= 0");
+    } else {
+      const Tumble tumble = dispersedTumble(seed, tumble_rate_rad_s);
+      p.q0_NB = tumble.q_NB;
+      p.w0_NB_B_rad_s = tumble.w_NB_B_rad_s;
+    }
+  }
   initial.finish();
 }
 
@@ -201,7 +219,7 @@ DynamicsParams readPlant(const bus::Scenario& scenario, bus::ConfigProblems& pro
   readOrbit(scenario.section("orbit", problems), p);
   readSpacecraft(scenario.section("spacecraft", problems), p);
   readEnvironment(scenario, scenario.section("environment", problems), p);
-  readInitial(scenario.section("initial", problems), p);
+  readInitial(scenario.section("initial", problems), p, scenario.seedFor("initial"));
   return p;
 }
 

@@ -14,6 +14,7 @@
 #include "components/attitude_controller/AttitudeControllerNode.hpp"
 #include "sim/DynamicsServerParams.hpp"
 #include "tools/SummaryS0.hpp"
+#include "tools/SummaryMagnetic.hpp"
 
 namespace flatsat::tools {
 
@@ -138,6 +139,7 @@ nlohmann::ordered_json summarize(const bus::Scenario& scenario, const std::strin
   s["stale_inputs"] = stale;
   s["overruns"] = overruns;
   addS0Metrics(s, scenario, recording);
+  summarizeMagnetic(scenario, recording, s);
   s["recording"] = recording_path;
   s["recording_sha256"] = recording.digest({std::string(bus::topics::kHealth.name)});
   summarizeThrusterSequencer(scenario, recording, s);

@@ -18,6 +18,7 @@
 #include "tools/HealthCommand.hpp"
 #include "tools/HzCommand.hpp"
 #include "tools/Launcher.hpp"
+#include "tools/MagneticStudy.hpp"
 #include "tools/OrbitCommand.hpp"
 #include "tools/PhysicsBench.hpp"
 #include "tools/PlotCommand.hpp"
@@ -55,7 +56,7 @@ struct RunOptions {
   std::string scenario;
   std::string out;
   std::vector<std::string> overrides;
-  std::optional<std::uint64_t> seed;  // --seed: replaces the scenario's seed
+  std::optional<std::uint64_t> seed;  // --seed: replaces the scenario's seed (dispersed initial conditions, noise)
   std::string log_level = "info";
   bool quiet = false;
   bool json = false;
@@ -154,10 +155,10 @@ int main(int argc, char** argv) {
   run_cmd->add_option("scenario", run_options.scenario, "scenario file (YAML)")->required();
   run_cmd->add_option("--out", run_options.out, "run directory (default runs/<name>-<time>)");
   run_cmd->add_option("--set", run_options.overrides, "override a scenario key: key.path=value");
-  run_cmd->add_option("--seed", run_options.seed, "scenario seed (replaces seed:)");
   run_cmd->add_option("--log", run_options.log_level, "components' log level");
   run_cmd->add_flag("-q,--quiet", run_options.quiet, "no progress, no table");
   run_cmd->add_flag("--json", run_options.json, "print the summary as JSON");
+  run_cmd->add_option("--seed", run_options.seed, "scenario seed: dispersed initial conditions and noise");
 
   std::string check_file;
   auto* check_cmd = app.add_subcommand("check", "check a scenario without running it");
@@ -173,6 +174,8 @@ int main(int argc, char** argv) {
   auto* orbit_cmd = tools::addOrbitCommand(app, orbit_exit);
   int field_exit = 0;
   auto* field_cmd = tools::addFieldCommand(app, field_exit);
+  int study_exit = 0;
+  auto* study_cmd = tools::addStudyCommand(app, study_exit);
   int tool_exit = 0;
   const std::vector<CLI::App*> tool_cmds = {
       tools::addTopicsCommand(app, tool_exit), tools::addEchoCommand(app, tool_exit),
@@ -187,6 +190,7 @@ int main(int argc, char** argv) {
   if (run_cmd->parsed()) return run(run_options);
   if (orbit_cmd->parsed()) return orbit_exit;
   if (field_cmd->parsed()) return field_exit;
+  if (study_cmd->parsed()) return study_exit;
   for (auto* tool : tool_cmds) {
     if (tool->parsed()) return tool_exit;
   }

@@ -4,8 +4,11 @@
 #include <optional>
 #include <string>
 
+#include <spdlog/spdlog.h>
+
 #include "bus/Convert.hpp"
 #include "sim/DynamicsServerParams.hpp"
+#include "sim/KeplerOrbit.hpp"
 
 namespace flatsat::unloading_controller {
 
@@ -33,13 +36,40 @@ msg::CoilWindow toMessage(const CoilWindowReport& r) {
   return m;
 }
 
-msg::DipoleCmd toMessage(const CrossProductUnloadingOutput& out) {
+msg::DipoleCmd toMessage(const MagneticModesOutput& out) {
   msg::DipoleCmd m;
   bus::put(m.m_body_Am2(), out.m_B_Am2);
   bus::put(m.h_wheels_body_Nms(), out.h_B_Nms);
   m.active(out.active);
   m.saturated(out.saturated);
+  m.mode(static_cast<std::uint8_t>(out.mode));
+  m.h_above_start(out.h_above_start);
+  m.h_below_stop(out.h_below_stop);
+  m.rate_error_rad_s(out.rate_error_rad_s);
+  m.rate_below_handover(out.rate_below_handover);
+  m.handover(out.handover);
   return m;
+}
+
+const char* name(MagneticMode mode) {
+  switch (mode) {
+    case MagneticMode::kUnload: return "unload";
+    case MagneticMode::kDetumble: return "detumble";
+    case MagneticMode::kSpinCapture: return "spin_capture";
+  }
+  return "?";
+}
+
+static_assert(static_cast<int>(msg::MAGNETIC_UNLOAD) == static_cast<int>(MagneticMode::kUnload) &&
+              static_cast<int>(msg::MAGNETIC_DETUMBLE) == static_cast<int>(MagneticMode::kDetumble) &&
+              static_cast<int>(msg::MAGNETIC_SPIN_CAPTURE) == static_cast<int>(MagneticMode::kSpinCapture));
+
+void readMode(bus::ParamReader& r, const std::string& key, std::optional<MagneticMode>& mode) {
+  std::string text;
+  r.read(key, text);
+  if (!r.has(key)) return;
+  mode = magneticModeFromName(text);
+  if (!mode) r.problem(key, "'" + text + "' is not unload, detumble or spin_capture");
 }
 
 }  // namespace
@@ -47,8 +77,9 @@ msg::DipoleCmd toMessage(const CrossProductUnloadingOutput& out) {
 UnloadingControllerNode::UnloadingControllerNode(bus::Bus& bus, bus::NodeOptions options,
                                                  const UnloadingControllerNodeParams& params)
     : Component(bus, std::move(options)),
-      law_(params.law),
-      arbiter_(params.law.max_dipole_Am2) {
+      mode_commands_(bus, bus::topics::kUnloadingModeCmd, [this](const msg::ModeCmd& c) { receive(c); }),
+      modes_(params.modes),
+      arbiter_(params.modes.unload.max_dipole_Am2) {
   if (params.field_source == FieldSource::kMagnetometer) {
     magnetometer_ = &addInput(bus::topics::kMagnetometer);
   } else {
@@ -57,10 +88,28 @@ UnloadingControllerNode::UnloadingControllerNode(bus::Bus& bus, bus::NodeOptions
   }
 }
 
+void UnloadingControllerNode::receive(const msg::ModeCmd& command) {
+  const int mode = static_cast<int>(command.mode());
+  if (mode < 0 || mode > static_cast<int>(MagneticMode::kSpinCapture)) {
+    spdlog::warn("{}: mode command {} from {} refused", name(), mode, bus::text(command.header().source()));
+    return;
+  }
+  std::lock_guard lock(mode_mutex_);
+  requested_mode_ = static_cast<MagneticMode>(mode);
+}
+
 void UnloadingControllerNode::step(const bus::StepContext& ctx) {
+  {
+    std::lock_guard lock(mode_mutex_);
+    if (requested_mode_) {
+      spdlog::info("{}: mode {} commanded", name(), unloading_controller::name(*requested_mode_));
+      modes_.command(*requested_mode_);
+      requested_mode_.reset();
+    }
+  }
   const auto reading = tach_.at(ctx.step);
   const auto& tach = last_tach_.update(reading);
-  CrossProductUnloadingInput in{bus::vec4(tach.wheel_speed_rad_s()), {}, false};
+  MagneticModesInput in{bus::vec4(tach.wheel_speed_rad_s()), {}, false};
   if (magnetometer_ != nullptr) {
     const auto field = magnetometer_->at(ctx.step);
     in.b_B_T = bus::vec3(field.b_body_T());
@@ -70,14 +119,17 @@ void UnloadingControllerNode::step(const bus::StepContext& ctx) {
     in.b_B_T = bus::vec3(field.b_body_T());
     in.b_valid = field.valid();
   }
-  const auto law = law_.step(in, ctx.sim_time_ns);
+  const auto out = modes_.step(in, ctx.sim_time_ns);
+  if (out.handover) {
+    spdlog::info("{}: detumbled, {} from here", name(), unloading_controller::name(modes_.mode()));
+  }
   std::optional<CoilRequest> request;
   if (coil_request_ != nullptr) request = toRequest(coil_request_->at(ctx.step));
-  const auto coils = arbiter_.step(request, law.m_B_Am2, ctx.sim_time_ns);
+  const auto coils = arbiter_.step(request, out.m_B_Am2, ctx.sim_time_ns);
 
-  auto message = toMessage(law);
+  auto message = toMessage(out);
   bus::put(message.m_body_Am2(), coils.m_B_Am2);
-  message.active(law.active && !coils.window_active);
+  message.active(out.active && !coils.window_active);
   message.header(bus::makeHeader(ctx, name()));
   command_.write(message);
   auto window = toMessage(coils.report);
@@ -90,16 +142,48 @@ UnloadingControllerNodeParams readParams(const bus::Scenario& scenario, const bu
   bus::ConfigProblems reported_by_dynamics_server;
   const auto plant = sim::readPlant(scenario, reported_by_dynamics_server);
   UnloadingControllerNodeParams node;
-  CrossProductUnloadingParams& p = node.law;
-  p.wheels = {plant.body.wheel_count, plant.body.wheel_axes_B, plant.body.wheel_inertia_kg_m2};
-  p.max_dipole_Am2 = plant.torquer_max_dipole_Am2;
+  MagneticModesParams& p = node.modes;
+  CrossProductUnloadingParams& u = p.unload;
+  u.wheels = {plant.body.wheel_count, plant.body.wheel_axes_B, plant.body.wheel_inertia_kg_m2};
+  u.max_dipole_Am2 = plant.torquer_max_dipole_Am2;
+  p.detumble.max_dipole_Am2 = plant.torquer_max_dipole_Am2;
+  if (plant.orbit.validate().empty()) p.spin.orbit_rate_rad_s = sim::KeplerOrbit(plant.orbit).meanMotion_rad_s();
+
   auto r = scenario.componentParams(args.name, problems);
-  r.read("enabled", p.enabled);
-  r.read("gain_per_s", p.gain_per_s, "1/s");
-  r.read("h_target_body_Nms", p.h_target_B_Nms, "N m s");
-  r.read("h_start_Nms", p.h_start_Nms, "N m s");
-  r.read("h_stop_Nms", p.h_stop_Nms, "N m s");
-  r.read("min_field_T", p.min_field_T, "T");
+  r.read("enabled", u.enabled);
+  r.read("gain_per_s", u.gain_per_s, "1/s");
+  r.read("h_target_body_Nms", u.h_target_B_Nms, "N m s");
+  r.read("h_start_Nms", u.h_start_Nms, "N m s");
+  r.read("h_stop_Nms", u.h_stop_Nms, "N m s");
+  r.read("min_field_T", u.min_field_T, "T");
+  p.detumble.min_field_T = u.min_field_T;
+  std::optional<MagneticMode> initial;
+  readMode(r, "mode", initial);
+  p.initial_mode = initial.value_or(MagneticMode::kUnload);
+  readMode(r, "after_detumble", p.after_detumble);
+  r.read("handover_rate_rad_s", p.handover_rate_rad_s, "rad/s");
+  r.read("handover_hold_s", p.handover_hold_s, "s");
+
+  auto d = r.section("detumble");
+  std::string shape = "bang_bang";
+  d.read("shape", shape);
+  if (shape == "proportional") {
+    p.detumble.shape = BdotShape::kProportional;
+  } else if (shape != "bang_bang") {
+    d.problem("shape", "'" + shape + "' is neither bang_bang nor proportional");
+  }
+  d.read("gain_Am2_s_per_T", p.detumble.gain_Am2_s_per_T, "A m^2 s/T");
+  d.read("filter_time_constant_s", p.detumble.filter_time_constant_s, "s");
+  d.read("deadband_rad_s", p.detumble.deadband_rad_s, "rad/s");
+  d.read("max_sample_gap_s", p.detumble.max_sample_gap_s, "s");
+  d.finish();
+
+  auto s = r.section("spin_capture");
+  s.read("spin_axis_body", p.spin.spin_axis_B, "-");
+  s.read("spin_rate_rad_s", p.spin.spin_rate_rad_s, "rad/s");
+  s.read("field_turn_per_orbit_rate", p.spin.field_turn_per_orbit_rate, "-");
+  s.finish();
+
   std::string source = "magnetometer";
   r.read("field_source", source);
   if (source == "s0_estimate") {

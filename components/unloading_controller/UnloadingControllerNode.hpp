@@ -1,27 +1,32 @@
 // SPDX-License-Identifier: Apache-2.0
 #pragma once
+#include <mutex>
+#include <optional>
+
 #include "bus/Component.hpp"
 #include "bus/NodeMain.hpp"
 #include "components/common/LastValid.hpp"
 #include "components/unloading_controller/CoilArbiter.hpp"
-#include "components/unloading_controller/CrossProductUnloading.hpp"
+#include "components/unloading_controller/MagneticModes.hpp"
 
 namespace flatsat::unloading_controller {
 
-/// Where the unloading law takes the field from.
+/// Where the magnetic laws take the field from.
 enum class FieldSource {
   kMagnetometer,  ///< flatsat/magnetometer
   kS0Estimate,    ///< flatsat/field_estimate (seed S0, no magnetometer); serves coil requests
 };
 
 struct UnloadingControllerNodeParams {
-  CrossProductUnloadingParams law;
+  MagneticModesParams modes;
   FieldSource field_source = FieldSource::kMagnetometer;
 };
 
-/// Magnetic momentum unloading and owner of the torquers: wheel speeds and the
-/// field in, torquer dipole out; windows other components request (seed S0)
-/// hold the coils through the CoilArbiter and are reported on flatsat/coil_window.
+/// The magnetorquers' owner: wheel speeds and the field in, torquer dipole out,
+/// in the mode the scenario or flatsat/unloading_mode_cmd sets (unload,
+/// detumble, spin capture; MagneticModes). Windows other components request
+/// (seed S0's measurements on flatsat/coil_request) hold the coils through the
+/// CoilArbiter and are reported on flatsat/coil_window.
 class UnloadingControllerNode final : public bus::Component {
  public:
   UnloadingControllerNode(bus::Bus& bus, bus::NodeOptions options,
@@ -29,21 +34,27 @@ class UnloadingControllerNode final : public bus::Component {
 
  private:
   void step(const bus::StepContext& ctx) override;
+  void receive(const msg::ModeCmd& command);
 
   bus::InputOf<bus::topics::kWheelTach>& tach_ = addInput(bus::topics::kWheelTach);
   LastValid<msg::WheelTachReading> last_tach_;  // rides through tachometer dropouts
-  bus::InputOf<bus::topics::kMagnetometer>* magnetometer_ = nullptr;   // kMagnetometer
+  bus::InputOf<bus::topics::kMagnetometer>* magnetometer_ = nullptr;    // kMagnetometer
   bus::InputOf<bus::topics::kFieldEstimate>* field_estimate_ = nullptr;  // kS0Estimate
   bus::InputOf<bus::topics::kCoilRequest>* coil_request_ = nullptr;      // kS0Estimate
-  bus::WriterOf<bus::topics::kCoilWindow>& coil_window_ = addOutput(bus::topics::kCoilWindow);
   bus::WriterOf<bus::topics::kDipoleCmd>& command_ = addOutput(bus::topics::kDipoleCmd);
-  CrossProductUnloading law_;
+  bus::WriterOf<bus::topics::kCoilWindow>& coil_window_ = addOutput(bus::topics::kCoilWindow);
+  std::mutex mode_mutex_;
+  std::optional<MagneticMode> requested_mode_;  // received, entered at the next step
+  bus::ReaderOf<bus::topics::kUnloadingModeCmd> mode_commands_;
+  MagneticModes modes_;
   CoilArbiter arbiter_;
 };
 
-/// components.<name>, with the wheel geometry from spacecraft.wheels and
-/// the coil limits from spacecraft.torquers.
+/// components.<name>: the unloading keys (gain_per_s, h_*), `mode:`, a
+/// `detumble:` and a `spin_capture:` section and the handover; the wheel
+/// geometry from spacecraft.wheels, the coil limits from spacecraft.torquers
+/// and the orbital rate from the orbit; `field_source: magnetometer | s0_estimate`.
 UnloadingControllerNodeParams readParams(const bus::Scenario& scenario, const bus::NodeArgs& args,
-                                         bus::ConfigProblems& problems);
+                               bus::ConfigProblems& problems);
 
 }  // namespace flatsat::unloading_controller

@@ -6,6 +6,7 @@
 // computed here independently, stamped with the step it answers.
 #include <catch2/catch.hpp>
 
+#include <optional>
 #include <thread>
 
 #include "bus/Convert.hpp"
@@ -29,12 +30,18 @@ Eigen::Vector3d fieldAt(std::uint64_t k) {
 
 class ScriptedPeers final : public bus::TimeMaster {
  public:
-  ScriptedPeers(bus::Bus& bus, bus::NodeOptions options)
-      : TimeMaster(bus, std::move(options), {100'000'000, kSteps - 1}) {}
+  ScriptedPeers(bus::Bus& bus, bus::NodeOptions options, std::optional<std::uint64_t> detumble_at = {})
+      : TimeMaster(bus, std::move(options), {100'000'000, kSteps - 1}), detumble_at_(detumble_at) {}
   std::map<std::uint64_t, msg::DipoleCmd> received;
 
  private:
   void publishStep(const bus::StepContext& ctx) override {
+    if (detumble_at_ == ctx.step) {
+      msg::ModeCmd command;
+      command.header(bus::makeHeader(ctx, "operator"));
+      command.mode(msg::MAGNETIC_DETUMBLE);
+      mode_.write(command);
+    }
     msg::WheelTachReading tach;
     tach.header(bus::makeHeader(ctx, "wheel_tach"));
     bus::put(tach.wheel_speed_rad_s(), speedsAt(ctx.step));
@@ -52,6 +59,8 @@ class ScriptedPeers final : public bus::TimeMaster {
   bus::WriterOf<bus::topics::kWheelTach>& tach_ = addOutput(bus::topics::kWheelTach);
   bus::WriterOf<bus::topics::kMagnetometer>& field_ = addOutput(bus::topics::kMagnetometer);
   bus::InputOf<bus::topics::kDipoleCmd>& dipole_ = addInput(bus::topics::kDipoleCmd);
+  bus::WriterOf<bus::topics::kUnloadingModeCmd>& mode_ = addOutput(bus::topics::kUnloadingModeCmd);
+  std::optional<std::uint64_t> detumble_at_;
 };
 
 }  // namespace
@@ -64,12 +73,12 @@ TEST_CASE("unloading controller node answers every step with the cross-product l
   axes.col(1) = Eigen::Vector3d::UnitY();
   axes.col(2) = Eigen::Vector3d::UnitZ();
 
-  unloading_controller::CrossProductUnloadingParams params;
-  params.gain_per_s = kGain;
-  params.max_dipole_Am2 = Eigen::Vector3d::Constant(kMaxDipole);
-  params.wheels.count = 3;
-  params.wheels.axes_B = axes;
-  params.wheels.inertia_kg_m2 = Eigen::Vector4d(kWheelInertia, kWheelInertia, kWheelInertia, 0);
+  unloading_controller::MagneticModesParams params;  // initial mode: unload
+  params.unload.gain_per_s = kGain;
+  params.unload.max_dipole_Am2 = Eigen::Vector3d::Constant(kMaxDipole);
+  params.unload.wheels.count = 3;
+  params.unload.wheels.axes_B = axes;
+  params.unload.wheels.inertia_kg_m2 = Eigen::Vector4d(kWheelInertia, kWheelInertia, kWheelInertia, 0);
 
   const bus::Schedule node_view = {
       {"dynamics_server", 1}, {"unloading_controller", 1}, {"wheel_tach", 1}, {"magnetometer", 1}};
@@ -101,4 +110,42 @@ TEST_CASE("unloading controller node answers every step with the cross-product l
     const Eigen::Vector3d h_perp = h - b * b.dot(h) / b.squaredNorm();
     CHECK((got.cross(b) + kGain / scale * h_perp).norm() <= 1e-9 * h_perp.norm() * kGain);
   }
+}
+
+TEST_CASE("a mode command on flatsat/unloading_mode_cmd switches the node to B-dot", "[component][dds][bdot]") {
+  const std::uint32_t domain = test::testDomain();
+  unloading_controller::MagneticModesParams params;  // initial mode: unload
+  params.unload.max_dipole_Am2 = Eigen::Vector3d::Constant(kMaxDipole);
+  params.detumble.max_dipole_Am2 = Eigen::Vector3d::Constant(kMaxDipole);
+  const bus::Schedule node_view = {
+      {"dynamics_server", 1}, {"unloading_controller", 1}, {"wheel_tach", 1}, {"magnetometer", 1}};
+  const bus::Schedule master_view = {{"dynamics_server", 1}, {"unloading_controller", 1}};
+  constexpr std::uint64_t kCommandStep = 10;
+
+  bus::Bus script_bus({domain, bus::NetworkProfile::kLoopback, "script"});
+  bus::Bus node_bus({domain, bus::NetworkProfile::kLoopback, "unloading_controller"});
+  ScriptedPeers script(script_bus, {"dynamics_server", master_view}, kCommandStep);
+  unloading_controller::UnloadingControllerNode node(node_bus, {"unloading_controller", node_view}, {params});
+  std::thread node_thread([&] { node.run(); });
+  script.run();
+  node_thread.join();
+
+  REQUIRE(script.received.size() == kSteps);
+  std::optional<std::uint64_t> switched;
+  for (const auto& [k, dipole] : script.received) {
+    CAPTURE(k);
+    if (k < kCommandStep) CHECK(dipole.mode() == msg::MAGNETIC_UNLOAD);  // sent with step 10's inputs
+    if (!switched && dipole.mode() == msg::MAGNETIC_DETUMBLE) switched = k;
+    if (switched) CHECK(dipole.mode() == msg::MAGNETIC_DETUMBLE);  // and it stays
+    if (switched && k > *switched) {
+      // B-dot, bang-bang: each coil at its limit against the field's change (off where B_i is constant).
+      const Eigen::Vector3d b_dot = fieldAt(k) - fieldAt(k - 1);
+      for (int i = 0; i < 3; ++i) {
+        CHECK(dipole.m_body_Am2()[i] == (b_dot[i] == 0.0 ? 0.0 : -std::copysign(kMaxDipole, b_dot[i])));
+      }
+      CHECK(dipole.active());
+    }
+  }
+  REQUIRE(switched);
+  CHECK(*switched < kSteps - 5);
 }

@@ -1,0 +1,104 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "components/unloading_controller/MagneticModes.hpp"
+
+#include <stdexcept>
+
+#include "components/common/Validation.hpp"
+
+namespace flatsat::unloading_controller {
+
+namespace {
+
+std::vector<std::string> prefixed(const std::string& prefix, std::vector<std::string> errors) {
+  for (auto& e : errors) e = prefix + e;
+  return errors;
+}
+
+BdotParams classic(BdotParams p) {
+  p.omega_ref_B_rad_s.setZero();
+  return p;
+}
+
+}  // namespace
+
+std::optional<MagneticMode> magneticModeFromName(const std::string& name) {
+  if (name == "unload") return MagneticMode::kUnload;
+  if (name == "detumble") return MagneticMode::kDetumble;
+  if (name == "spin_capture") return MagneticMode::kSpinCapture;
+  return std::nullopt;
+}
+
+std::vector<std::string> MagneticModesParams::validate() const {
+  std::vector<std::string> errors;
+  append(errors, unload.validate());
+  append(errors, prefixed("detumble.", detumble.validate()));
+  append(errors, prefixed("spin_capture.", spin.validate()));
+  require(errors, after_detumble != MagneticMode::kDetumble, "after_detumble", "must differ from detumble");
+  requirePositive(errors, "handover_rate_rad_s", handover_rate_rad_s);
+  requireNonNegative(errors, "handover_hold_s", handover_hold_s);
+  return errors;
+}
+
+MagneticModes::MagneticModes(const Params& params)
+    : params_(params),
+      unload_(params.unload),
+      detumble_(classic(params.detumble)),
+      spin_(spinCaptureLaw(params.spin, params.unload.max_dipole_Am2)),
+      mode_(params.initial_mode) {
+  if (const auto errors = params_.validate(); !errors.empty()) {
+    std::string message = "MagneticModesParams invalid:";
+    for (const auto& e : errors) message += " " + e + ";";
+    throw std::invalid_argument(message);
+  }
+}
+
+void MagneticModes::reset() { enter(params_.initial_mode); }
+
+void MagneticModes::command(MagneticMode mode) {
+  if (mode != mode_) enter(mode);
+}
+
+void MagneticModes::enter(MagneticMode mode) {
+  mode_ = mode;
+  unload_.reset();
+  detumble_.reset();
+  spin_.reset();
+  slow_since_ns_.reset();
+}
+
+MagneticModesOutput MagneticModes::step(const Input& in, std::int64_t t_ns) {
+  Output out;
+  out.mode = mode_;
+  if (mode_ == MagneticMode::kUnload) {
+    const auto u = unload_.step({in.wheel_speed_rad_s, in.b_B_T, in.b_valid}, t_ns);
+    const double h = u.h_B_Nms.norm();
+    out.m_B_Am2 = u.m_B_Am2;
+    out.h_B_Nms = u.h_B_Nms;
+    out.active = u.active;
+    out.saturated = u.saturated;
+    out.h_above_start = h > params_.unload.h_start_Nms;
+    out.h_below_stop = h < params_.unload.h_stop_Nms;
+    return out;
+  }
+  const auto b = (mode_ == MagneticMode::kDetumble ? detumble_ : spin_).step({in.b_B_T, in.b_valid}, t_ns);
+  out.m_B_Am2 = b.m_B_Am2;
+  out.active = b.active;
+  out.saturated = b.saturated;
+  out.rate_error_rad_s = b.rate_error_rad_s.value_or(0.0);
+  if (mode_ != MagneticMode::kDetumble || !b.rate_error_rad_s) return out;
+
+  out.rate_below_handover = *b.rate_error_rad_s < params_.handover_rate_rad_s;
+  if (!out.rate_below_handover) {
+    slow_since_ns_.reset();
+  } else if (!slow_since_ns_) {
+    slow_since_ns_ = t_ns;
+  }
+  const bool held = slow_since_ns_ && static_cast<double>(t_ns - *slow_since_ns_) * 1e-9 >= params_.handover_hold_s;
+  if (held && params_.after_detumble) {
+    enter(*params_.after_detumble);
+    out.handover = true;
+  }
+  return out;
+}
+
+}  // namespace flatsat::unloading_controller
