@@ -56,7 +56,8 @@ CaseResult runCase(bus::Scenario scenario, std::uint64_t seed) {
   scenario.seed = seed;
   bus::ConfigProblems problems;
   const auto server = sim::readDynamicsServerParams(scenario, "dynamics_server", problems);
-  const auto control = unloading_controller::readParams(scenario, {scenario.file, "unloading_controller", ""}, problems);
+  const auto control =
+      unloading_controller::readParams(scenario, {scenario.file, "unloading_controller", ""}, problems).modes;
   const auto sensor = magnetometer::readParams(scenario, {scenario.file, "magnetometer", ""}, problems);
   if (!problems.empty()) throw std::invalid_argument(problems.joined());
 
@@ -162,14 +163,17 @@ int runStudy(const StudyOptions& o) {
 
 }  // namespace
 
-CLI::App* addStudyCommand(CLI::App& app, int& exit_code) {
-  auto options = std::make_shared<StudyOptions>();
-  auto* cmd = app.add_subcommand("study", "seeded detumble / spin-capture cases without DDS; prints a table");
-  cmd->add_option("kind", options->kind, "detumble or spin")->required();
-  cmd->add_option("--cases", options->cases, "seeds 1..N")->capture_default_str()->check(CLI::PositiveNumber);
-  cmd->add_option("--scenario", options->scenario, "scenario (default: detumble.yaml or s4_spin.yaml)");
-  cmd->callback([options, &exit_code] { exit_code = runStudy(*options); });
-  return cmd;
+void addMagneticStudies(CLI::App& study, int& exit_code) {
+  for (const char* kind : {"detumble", "spin"}) {
+    auto options = std::make_shared<StudyOptions>();
+    options->kind = kind;
+    auto* cmd = study.add_subcommand(
+        kind, std::string(kind) == "spin" ? "S4 spin capture: seeded tumbles, time to capture, coil duty"
+                                          : "B-dot detumble: seeded tumbles, time to detumble, coil duty");
+    cmd->add_option("--cases", options->cases, "seeds 1..N")->capture_default_str()->check(CLI::PositiveNumber);
+    cmd->add_option("--scenario", options->scenario, "scenario (default: detumble.yaml or s4_spin.yaml)");
+    cmd->callback([options, &exit_code] { exit_code = runStudy(*options); });
+  }
 }
 
 }  // namespace flatsat::tools

@@ -5,7 +5,7 @@
 
 namespace flatsat::tools {
 
-/// Registers `flatsat study detumble|spin [--cases N] [--scenario FILE]`: the
+/// Registers `flatsat study detumble|spin [--cases N] [--scenario FILE]` under `study`: the
 /// scenario's plant (DynamicsModel), magnetometer model and magnetic controller
 /// (MagneticModes) in one process, no DDS, once per seed 1..N (the seeds of
 /// `flatsat run --seed`), printing one row per case — time to detumble or capture,
@@ -13,6 +13,6 @@ namespace flatsat::tools {
 /// issue 6 (detumble: < 0.2 deg/s within 3 orbits; spin: within 5 deg and 5 %
 /// within 5 orbits, held to the end of the run). The defaults are
 /// deploy/scenarios/detumble.yaml and s4_spin.yaml. exit_code: 0, 2 for bad input.
-CLI::App* addStudyCommand(CLI::App& app, int& exit_code);
+void addMagneticStudies(CLI::App& study, int& exit_code);
 
 }  // namespace flatsat::tools

@@ -15,6 +15,7 @@
 #include "components/sun_sensor/SunSensorNode.hpp"
 #include "components/thruster_sequencer/AngleOnlyCase.hpp"
 #include "components/thruster_sequencer/ThrusterSequencerNode.hpp"
+#include "tools/MagneticStudy.hpp"
 #include "tools/RunDirectory.hpp"
 #include "tools/S0Study.hpp"
 
@@ -144,6 +145,8 @@ CLI::App* addStudyCommand(CLI::App& app, int& exit_code) {
   s0->add_option("--dipole-Am2", s0_options->dipole_Am2, "one case only: x dipole [A m^2]")
       ->check(CLI::PositiveNumber);
   s0->callback([s0_options, &exit_code] { exit_code = runS0Study(*s0_options); });
+
+  addMagneticStudies(*study, exit_code);
   return study;
 }
 

@@ -23,7 +23,7 @@ void summarizeMagnetic(const bus::Scenario& scenario, const bus::Recording& reco
   if (!scenario.hasComponent("unloading_controller")) return;
   bus::ConfigProblems ignored;  // the scenario was checked before the run
   const auto control =
-      unloading_controller::readParams(scenario, {scenario.file, "unloading_controller", ""}, ignored);
+      unloading_controller::readParams(scenario, {scenario.file, "unloading_controller", ""}, ignored).modes;
   const bool spin = control.initial_mode == MagneticMode::kSpinCapture ||
                     control.after_detumble == MagneticMode::kSpinCapture;
   if (control.initial_mode == MagneticMode::kUnload) return;

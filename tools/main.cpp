@@ -18,7 +18,6 @@
 #include "tools/HealthCommand.hpp"
 #include "tools/HzCommand.hpp"
 #include "tools/Launcher.hpp"
-#include "tools/MagneticStudy.hpp"
 #include "tools/OrbitCommand.hpp"
 #include "tools/PhysicsBench.hpp"
 #include "tools/PlotCommand.hpp"
@@ -180,8 +179,7 @@ int main(int argc, char** argv) {
   const std::vector<CLI::App*> tool_cmds = {
       tools::addTopicsCommand(app, tool_exit), tools::addEchoCommand(app, tool_exit),
       tools::addHzCommand(app, tool_exit),     tools::addHealthCommand(app, tool_exit),
-      tools::addExportCommand(app, tool_exit), tools::addPlotCommand(app, tool_exit),
-      tools::addStudyCommand(app, tool_exit)};
+      tools::addExportCommand(app, tool_exit), tools::addPlotCommand(app, tool_exit)};
 
   auto* clean_cmd = app.add_subcommand(
       "clean-shm", "remove Fast DDS shared-memory files no live process uses");
