@@ -12,6 +12,7 @@
 #include "bus/Topics.hpp"
 #include "components/attitude_controller/AttitudeControllerNode.hpp"
 #include "sim/DynamicsServerParams.hpp"
+#include "tools/SummaryEstimator.hpp"
 
 namespace flatsat::tools {
 
@@ -118,6 +119,7 @@ nlohmann::ordered_json summarize(const bus::Scenario& scenario, const std::strin
   s["ownership_switches"] = switches;
   s["stale_inputs"] = stale;
   s["overruns"] = overruns;
+  summarizeEstimator(scenario, recording, s);
   s["recording"] = recording_path;
   s["recording_sha256"] = recording.digest({std::string(bus::topics::kHealth.name)});
   return s;

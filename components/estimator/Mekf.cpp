@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "components/estimator/Mekf.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -80,7 +81,7 @@ void Mekf::reset() {
   P_.setZero();
   initialized_ = false;
   rejected_total_ = 0;
-  rejected_in_a_row_ = 0;
+  rejected_in_a_row_.fill(0);
   has_last_t_ = false;
 }
 
@@ -139,10 +140,8 @@ MeasurementUse Mekf::update(const Eigen::Matrix<double, M, 1>& innovation,
   const double nis = innovation.dot(S_ldlt.solve(innovation));
   if (!(nis <= gate)) {
     ++rejected_total_;
-    ++rejected_in_a_row_;
     return MeasurementUse::kRejected;
   }
-  rejected_in_a_row_ = 0;
   const Eigen::Matrix<double, 6, M> K = S_ldlt.solve(H * P_).transpose();
   const Eigen::Matrix<double, 6, 1> dx = K * innovation;
   // Joseph form keeps P symmetric positive definite under rounding (Bucy & Joseph 1968).
@@ -168,7 +167,6 @@ MeasurementUse Mekf::directionUpdate(const Eigen::Vector3d& meas_B, const Eigen:
   const Eigen::Vector3d b_hat = q_NB_.conjugate() * r_N;
   if (m_B.dot(b_hat) <= 0.0) {
     ++rejected_total_;
-    ++rejected_in_a_row_;
     return MeasurementUse::kRejected;
   }
   const Eigen::Vector3d e1 = perpendicular(b_hat);
@@ -208,8 +206,16 @@ bool Mekf::initialize(const Input& in) {
   P_.bottomLeftCorner<3, 3>().setZero();
   P_.bottomRightCorner<3, 3>() = Matrix3d::Identity() * params_.initial_bias_sigma_rad_s *
                                  params_.initial_bias_sigma_rad_s;
-  rejected_in_a_row_ = 0;
+  rejected_in_a_row_.fill(0);
   return true;
+}
+
+void Mekf::countRejections(const Output& out) {
+  const MeasurementUse uses[] = {out.sun, out.field, out.star};
+  for (std::size_t i = 0; i < rejected_in_a_row_.size(); ++i) {
+    if (uses[i] == MeasurementUse::kRejected) ++rejected_in_a_row_[i];
+    if (uses[i] == MeasurementUse::kUsed) rejected_in_a_row_[i] = 0;
+  }
 }
 
 MekfOutput Mekf::step(const Input& in, std::int64_t t_ns) {
@@ -219,9 +225,10 @@ MekfOutput Mekf::step(const Input& in, std::int64_t t_ns) {
   has_last_t_ = true;
 
   Output out;
-  if (rejected_in_a_row_ >= params_.reacquire_after_rejections) {
-    // Every measurement disagrees with the estimate for a long while: the estimate, not the
-    // sensors, is wrong. Start over from the vectors.
+  if (*std::max_element(rejected_in_a_row_.begin(), rejected_in_a_row_.end()) >=
+      params_.reacquire_after_rejections) {
+    // A sensor has disagreed with the estimate for a long while: more likely the estimate,
+    // pulled off by the others, is wrong than the sensor. Start over from the vectors.
     initialized_ = false;
   }
   if (!initialized_) {
@@ -245,6 +252,7 @@ MekfOutput Mekf::step(const Input& in, std::int64_t t_ns) {
       const double sigma_rad = std::hypot(noise_rad, params_.field_model_sigma_rad);
       out.field = directionUpdate(in.b_B_meas_T, in.b_N_ref_T, sigma_rad);
     }
+    countRejections(out);
   }
 
   out.initialized = initialized_;

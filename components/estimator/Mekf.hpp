@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -22,7 +23,7 @@ struct MekfParams {
   double initial_bias_sigma_rad_s = 1.0e-4;     // [rad/s] 1σ per axis of the first bias guess (0), > 0
   double gate_probability = 0.9999;             // [-] innovation inside the gate with this probability, (0, 1)
   double max_attitude_sigma_rad = 0.05;         // [rad] largest attitude 1σ (any axis) still called valid, > 0
-  int reacquire_after_rejections = 100;         // [-] this many gated-out measurements in a row: back to TRIAD, >= 1
+  int reacquire_after_rejections = 100;         // [-] one sensor gated out this many times in a row: back to TRIAD, >= 1
 
   /// Every violation as "field: reason"; empty when valid.
   std::vector<std::string> validate() const;
@@ -97,6 +98,7 @@ class Mekf {
   MeasurementUse directionUpdate(const Eigen::Vector3d& meas_B, const Eigen::Vector3d& ref_N,
                                  double sigma_rad);
   MeasurementUse starUpdate(const Eigen::Quaterniond& q_NB_star);
+  void countRejections(const MekfOutput& out);
   /// Gates the innovation, then updates and resets; kRejected leaves the state alone.
   template <int M>
   MeasurementUse update(const Eigen::Matrix<double, M, 1>& innovation,
@@ -111,7 +113,7 @@ class Mekf {
   Matrix6d P_ = Matrix6d::Zero();
   bool initialized_ = false;
   std::uint64_t rejected_total_ = 0;
-  int rejected_in_a_row_ = 0;
+  std::array<int, 3> rejected_in_a_row_{};  // per sensor: Sun, field, star tracker
   std::int64_t last_t_ns_ = 0;
   bool has_last_t_ = false;
 };

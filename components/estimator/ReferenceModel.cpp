@@ -11,6 +11,7 @@ namespace flatsat::estimator {
 std::vector<std::string> ReferenceModelParams::validate() const {
   std::vector<std::string> problems;
   for (const auto& p : orbit.validate()) problems.push_back("orbit." + p);
+  for (const auto& p : orbit_track.validate()) problems.push_back("orbit_track." + p);
   return problems;
 }
 
@@ -27,17 +28,20 @@ const ReferenceModelParams& checked(const ReferenceModelParams& p) {
 
 ReferenceModel::ReferenceModel(const Params& params)
     : params_(checked(params)),
-      orbit_(params.orbit),
+      orbit_(params.orbit_track, params.orbit, params.epoch),
       field_(params.field),
-      jd_epoch_(sim::julianDate(params.epoch)) {}
+      jd_epoch_(sim::julianDate(params.epoch)) {
+  if (params.field_harmonics) harmonics_.emplace(*params.field_harmonics);
+}
 
-ReferenceVectors ReferenceModel::step(std::int64_t t_ns) const {
+ReferenceVectors ReferenceModel::step(std::int64_t t_ns) {
   const double t_s = sim::toSeconds(t_ns);
   const double jd = jd_epoch_ + t_s / 86400.0;
   const Eigen::Vector3d r_N = orbit_.at(t_s).r_N_m;
   const Eigen::Matrix3d R_EN = sim::R_EN(jd);
   ReferenceVectors out;
-  out.b_N_T = R_EN.transpose() * field_.b_E_T(R_EN * r_N);
+  const Eigen::Vector3d r_E = R_EN * r_N;
+  out.b_N_T = R_EN.transpose() * (harmonics_ ? harmonics_->b_E_T(r_E) : field_.b_E_T(r_E));
   out.sun_N_unit =
       (sim::sunPosition_N_m(jd + sim::kTtMinusUtc_s / 86400.0) - r_N).normalized();
   return out;

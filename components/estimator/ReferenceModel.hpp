@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #pragma once
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -8,6 +9,8 @@
 
 #include "sim/GeomagneticField.hpp"
 #include "sim/KeplerOrbit.hpp"
+#include "sim/OrbitTrack.hpp"
+#include "sim/SphericalHarmonicField.hpp"
 #include "sim/Time.hpp"
 
 namespace flatsat::estimator {
@@ -18,7 +21,13 @@ namespace flatsat::estimator {
 struct ReferenceModelParams {
   sim::UtcEpoch epoch;               // scenario epoch (t = 0), UTC
   sim::OrbitElements orbit;          // onboard orbit knowledge at the epoch
-  sim::DipoleCoefficients field;     // [nT] onboard field model coefficients
+  /// [-] how the onboard orbit moves: Kepler (default) or the plant's numerical propagator
+  /// (a GNSS-grade onboard orbit)
+  sim::OrbitTrackParams orbit_track;
+  sim::DipoleCoefficients field;     // [nT] onboard tilted-dipole coefficients
+  /// [nT] onboard spherical-harmonic model (IGRF/WMM to its degree, 1..13) used instead of
+  /// the dipole; empty: the dipole.
+  std::optional<sim::GaussCoefficients> field_harmonics;
   std::vector<std::string> validate() const;
 };
 
@@ -31,13 +40,15 @@ class ReferenceModel {
  public:
   using Params = ReferenceModelParams;
   explicit ReferenceModel(const Params& params);
-  void reset() {}
-  ReferenceVectors step(std::int64_t t_ns) const;
+  void reset() { orbit_.reset(); }
+  /// @param t_ns [ns] since the epoch, non-decreasing from call to call (the orbit integrates forward).
+  ReferenceVectors step(std::int64_t t_ns);
 
  private:
   Params params_;
-  sim::KeplerOrbit orbit_;
+  sim::OrbitTrack orbit_;
   sim::TiltedDipoleField field_;
+  std::optional<sim::SphericalHarmonicField> harmonics_;
   double jd_epoch_;  // [d] UTC ≈ UT1
 };
 
