@@ -70,8 +70,8 @@ msg::AttitudeEstimate toMessage(const MekfOutput& out) {
   m.valid(out.valid);
   m.has_covariance(true);
   putBlock(m.attitude_cov_body_rad2(), out.covariance.topLeftCorner<3, 3>());
-  putBlock(m.gyro_bias_cov_body_rad2_s2(), out.covariance.bottomRightCorner<3, 3>());
-  putBlock(m.attitude_bias_cov_body_rad2_s(), out.covariance.topRightCorner<3, 3>());
+  putBlock(m.gyro_bias_cov_body_rad2_s2(), out.covariance.block<3, 3>(3, 3));
+  putBlock(m.attitude_bias_cov_body_rad2_s(), out.covariance.block<3, 3>(0, 3));
   m.measurements_rejected(out.rejected_total);
   return m;
 }
@@ -183,6 +183,8 @@ EstimatorNodeParams readParams(const bus::Scenario& scenario, const bus::NodeArg
   r.read("sun_sigma_rad", p.mekf.sun_sigma_rad, "rad");
   r.read("magnetometer_noise_T", p.mekf.magnetometer_noise_T, "T");
   r.read("field_model_sigma_rad", p.mekf.field_model_sigma_rad, "rad");
+  r.read("magnetometer_bias_sigma_T", p.mekf.magnetometer_bias_sigma_T, "T");
+  r.read("magnetometer_bias_rw_T_per_sqrt_s", p.mekf.magnetometer_bias_rw_T_per_sqrt_s, "-");
   r.read("star_tracker_sigma_body_rad", p.mekf.star_tracker_sigma_B_rad, "rad");
   r.read("initial_attitude_sigma_rad", p.mekf.initial_attitude_sigma_rad, "rad");
   r.read("initial_bias_sigma_rad_s", p.mekf.initial_bias_sigma_rad_s, "rad/s");

@@ -55,6 +55,8 @@ std::vector<std::string> MekfParams::validate() const {
   requirePositive(errors, "sun_sigma_rad", sun_sigma_rad);
   requirePositive(errors, "magnetometer_noise_T", magnetometer_noise_T);
   requireNonNegative(errors, "field_model_sigma_rad", field_model_sigma_rad);
+  requirePositive(errors, "magnetometer_bias_sigma_T", magnetometer_bias_sigma_T);
+  requireNonNegative(errors, "magnetometer_bias_rw_T_per_sqrt_s", magnetometer_bias_rw_T_per_sqrt_s);
   requireAllPositive(errors, "star_tracker_sigma_B_rad", star_tracker_sigma_B_rad, "axis");
   requirePositive(errors, "initial_attitude_sigma_rad", initial_attitude_sigma_rad);
   requirePositive(errors, "initial_bias_sigma_rad_s", initial_bias_sigma_rad_s);
@@ -78,6 +80,7 @@ Mekf::Mekf(const Params& params) : params_(params) {
 void Mekf::reset() {
   q_NB_.setIdentity();
   bias_B_rad_s_.setZero();
+  mag_bias_B_T_.setZero();
   P_.setZero();
   initialized_ = false;
   rejected_total_ = 0;
@@ -107,9 +110,9 @@ void Mekf::propagate(const Eigen::Vector3d& w_gyro_B, double dt_s) {
     c2 = (1.0 - std::cos(a)) / (n * n);
     c3 = (a - std::sin(a)) / (n * n * n);
   }
-  Matrix6d Phi = Matrix6d::Identity();
-  Phi.topLeftCorner<3, 3>() = Matrix3d::Identity() - W * c1 + W2 * c2;
-  Phi.topRightCorner<3, 3>() = W * c2 - Matrix3d::Identity() * dt_s - W2 * c3;
+  MekfMatrix Phi = MekfMatrix::Identity();
+  Phi.block<3, 3>(0, 0) = Matrix3d::Identity() - W * c1 + W2 * c2;
+  Phi.block<3, 3>(0, 3) = W * c2 - Matrix3d::Identity() * dt_s - W2 * c3;
 
   // Farrenkopf's discrete process noise (Farrenkopf 1978, J. Guidance and Control 1(4);
   // Markley & Crassidis 2014, §6.2.4; Crassidis & Junkins 2012, §7.2.1):
@@ -117,11 +120,14 @@ void Mekf::propagate(const Eigen::Vector3d& w_gyro_B, double dt_s) {
   //       [−(σ_u²Δt²/2) I            (σ_u²Δt) I    ]
   const double sv2 = params_.gyro_arw_rad_per_sqrt_s * params_.gyro_arw_rad_per_sqrt_s;
   const double su2 = params_.gyro_rrw_rad_per_s_sqrt_s * params_.gyro_rrw_rad_per_s_sqrt_s;
-  Matrix6d Q = Matrix6d::Zero();
-  Q.topLeftCorner<3, 3>().diagonal().setConstant(sv2 * dt_s + su2 * dt_s * dt_s * dt_s / 3.0);
-  Q.topRightCorner<3, 3>().diagonal().setConstant(-0.5 * su2 * dt_s * dt_s);
-  Q.bottomLeftCorner<3, 3>().diagonal().setConstant(-0.5 * su2 * dt_s * dt_s);
-  Q.bottomRightCorner<3, 3>().diagonal().setConstant(su2 * dt_s);
+  // The magnetometer bias is a random walk of its own.
+  const double sm2 = params_.magnetometer_bias_rw_T_per_sqrt_s * params_.magnetometer_bias_rw_T_per_sqrt_s;
+  MekfMatrix Q = MekfMatrix::Zero();
+  Q.block<3, 3>(0, 0).diagonal().setConstant(sv2 * dt_s + su2 * dt_s * dt_s * dt_s / 3.0);
+  Q.block<3, 3>(0, 3).diagonal().setConstant(-0.5 * su2 * dt_s * dt_s);
+  Q.block<3, 3>(3, 0).diagonal().setConstant(-0.5 * su2 * dt_s * dt_s);
+  Q.block<3, 3>(3, 3).diagonal().setConstant(su2 * dt_s);
+  Q.block<3, 3>(6, 6).diagonal().setConstant(sm2 * dt_s);
 
   P_ = Phi * P_ * Phi.transpose() + Q;
   P_ = 0.5 * (P_ + P_.transpose());
@@ -129,7 +135,7 @@ void Mekf::propagate(const Eigen::Vector3d& w_gyro_B, double dt_s) {
 
 template <int M>
 MeasurementUse Mekf::update(const Eigen::Matrix<double, M, 1>& innovation,
-                            const Eigen::Matrix<double, M, 6>& H,
+                            const Eigen::Matrix<double, M, kMekfStates>& H,
                             const Eigen::Matrix<double, M, M>& R, double gate) {
   using MatrixM = Eigen::Matrix<double, M, M>;
   const MatrixM S = H * P_ * H.transpose() + R;
@@ -142,28 +148,31 @@ MeasurementUse Mekf::update(const Eigen::Matrix<double, M, 1>& innovation,
     ++rejected_total_;
     return MeasurementUse::kRejected;
   }
-  const Eigen::Matrix<double, 6, M> K = S_ldlt.solve(H * P_).transpose();
-  const Eigen::Matrix<double, 6, 1> dx = K * innovation;
+  const Eigen::Matrix<double, kMekfStates, M> K = S_ldlt.solve(H * P_).transpose();
+  const MekfVector dx = K * innovation;
   // Joseph form keeps P symmetric positive definite under rounding (Bucy & Joseph 1968).
-  const Matrix6d I_KH = Matrix6d::Identity() - K * H;
+  const MekfMatrix I_KH = MekfMatrix::Identity() - K * H;
   P_ = I_KH * P_ * I_KH.transpose() + K * R * K.transpose();
   P_ = 0.5 * (P_ + P_.transpose());
   // Multiplicative reset: the error moves into the reference and restarts at zero
   // (Markley & Crassidis 2014, §6.2.3; Lefferts, Markley & Shuster 1982, §IV).
   q_NB_ = (q_NB_ * sim::quatFromRotationVector(dx.head<3>())).normalized();
-  bias_B_rad_s_ += dx.tail<3>();
+  bias_B_rad_s_ += dx.segment<3>(3);
+  mag_bias_B_T_ += dx.tail<3>();
   return MeasurementUse::kUsed;
 }
 
 MeasurementUse Mekf::directionUpdate(const Eigen::Vector3d& meas_B, const Eigen::Vector3d& ref_N,
-                                     double sigma_rad) {
+                                     double sigma_rad, double field_scale) {
   Eigen::Vector3d m_B;
   Eigen::Vector3d r_N;
   if (!unitInto(meas_B, m_B) || !unitInto(ref_N, r_N)) return MeasurementUse::kAbsent;
   // Predicted b̂ = R(q)ᵀ r; the truth is b̂ + b̂ × δθ to first order. The measurement is the
   // measured unit vector's components along two axes e1, e2 ⊥ b̂ (predicted zero), which
   // removes the singular direction of the 3-vector model σ²(I − b bᵀ) (Shuster 1989, J.
-  // Astronautical Sciences 37(1), "QUEST measurement model"): H_i = [(e_i × b̂)ᵀ 0].
+  // Astronautical Sciences 37(1), "QUEST measurement model"): H_i = [(e_i × b̂)ᵀ 0 e_iᵀ/|B|],
+  // the last block for the field, whose bias Δb_m moves the measured direction by
+  // (I − b̂b̂ᵀ)Δb_m/|B|.
   const Eigen::Vector3d b_hat = q_NB_.conjugate() * r_N;
   if (m_B.dot(b_hat) <= 0.0) {
     ++rejected_total_;
@@ -171,9 +180,11 @@ MeasurementUse Mekf::directionUpdate(const Eigen::Vector3d& meas_B, const Eigen:
   }
   const Eigen::Vector3d e1 = perpendicular(b_hat);
   const Eigen::Vector3d e2 = b_hat.cross(e1);
-  Eigen::Matrix<double, 2, 6> H = Eigen::Matrix<double, 2, 6>::Zero();
+  Eigen::Matrix<double, 2, kMekfStates> H = Eigen::Matrix<double, 2, kMekfStates>::Zero();
   H.block<1, 3>(0, 0) = e1.cross(b_hat).transpose();
   H.block<1, 3>(1, 0) = e2.cross(b_hat).transpose();
+  H.block<1, 3>(0, 6) = field_scale * e1.transpose();
+  H.block<1, 3>(1, 6) = field_scale * e2.transpose();
   const Eigen::Vector2d innovation(e1.dot(m_B), e2.dot(m_B));
   const Eigen::Matrix2d R = Eigen::Matrix2d::Identity() * sigma_rad * sigma_rad;
   return update<2>(innovation, H, R, gate2_);
@@ -185,7 +196,7 @@ MeasurementUse Mekf::starUpdate(const Eigen::Quaterniond& q_NB_star) {
   Eigen::Quaterniond dq = q_NB_.conjugate() * q_NB_star.normalized();
   if (dq.w() < 0.0) dq.coeffs() *= -1.0;
   const Eigen::Vector3d innovation = 2.0 * dq.vec();
-  Eigen::Matrix<double, 3, 6> H = Eigen::Matrix<double, 3, 6>::Zero();
+  Eigen::Matrix<double, 3, kMekfStates> H = Eigen::Matrix<double, 3, kMekfStates>::Zero();
   H.leftCols<3>().setIdentity();
   const Eigen::Matrix3d R = params_.star_tracker_sigma_B_rad.cwiseAbs2().asDiagonal();
   return update<3>(innovation, H, R, gate3_);
@@ -196,16 +207,19 @@ bool Mekf::initialize(const Input& in) {
     q_NB_ = in.q_NB_star.normalized();
     P_.topLeftCorner<3, 3>() = params_.star_tracker_sigma_B_rad.cwiseAbs2().asDiagonal();
   } else if (in.sun_valid && in.b_valid &&
-             triad(in.sun_B_meas_unit, in.b_B_meas_T, in.sun_N_ref_unit, in.b_N_ref_T, q_NB_)) {
+             triad(in.sun_B_meas_unit, in.b_B_meas_T - mag_bias_B_T_, in.sun_N_ref_unit,
+                   in.b_N_ref_T, q_NB_)) {
     P_.topLeftCorner<3, 3>() = Matrix3d::Identity() * params_.initial_attitude_sigma_rad *
                                params_.initial_attitude_sigma_rad;
   } else {
     return false;
   }
-  P_.topRightCorner<3, 3>().setZero();
-  P_.bottomLeftCorner<3, 3>().setZero();
-  P_.bottomRightCorner<3, 3>() = Matrix3d::Identity() * params_.initial_bias_sigma_rad_s *
-                                 params_.initial_bias_sigma_rad_s;
+  P_.rightCols<6>().setZero();
+  P_.bottomRows<6>().setZero();
+  P_.block<3, 3>(3, 3) = Matrix3d::Identity() * params_.initial_bias_sigma_rad_s *
+                         params_.initial_bias_sigma_rad_s;
+  P_.block<3, 3>(6, 6) = Matrix3d::Identity() * params_.magnetometer_bias_sigma_T *
+                         params_.magnetometer_bias_sigma_T;
   rejected_in_a_row_.fill(0);
   return true;
 }
@@ -243,14 +257,15 @@ MekfOutput Mekf::step(const Input& in, std::int64_t t_ns) {
     // for uncorrelated measurements, and each gate sees the others' corrections.
     if (in.star_valid) out.star = starUpdate(in.q_NB_star);
     if (in.sun_valid) {
-      out.sun = directionUpdate(in.sun_B_meas_unit, in.sun_N_ref_unit, params_.sun_sigma_rad);
+      out.sun = directionUpdate(in.sun_B_meas_unit, in.sun_N_ref_unit, params_.sun_sigma_rad, 0.0);
     }
     if (in.b_valid) {
       // White noise σ_B per axis turns the direction by σ_B/|B| per transverse axis; the onboard
       // model's direction error adds in quadrature.
-      const double noise_rad = params_.magnetometer_noise_T / in.b_N_ref_T.norm();
+      const double field_scale = 1.0 / in.b_N_ref_T.norm();
+      const double noise_rad = params_.magnetometer_noise_T * field_scale;
       const double sigma_rad = std::hypot(noise_rad, params_.field_model_sigma_rad);
-      out.field = directionUpdate(in.b_B_meas_T, in.b_N_ref_T, sigma_rad);
+      out.field = directionUpdate(in.b_B_meas_T - mag_bias_B_T_, in.b_N_ref_T, sigma_rad, field_scale);
     }
     countRejections(out);
   }
@@ -258,6 +273,7 @@ MekfOutput Mekf::step(const Input& in, std::int64_t t_ns) {
   out.initialized = initialized_;
   out.q_NB = q_NB_;
   out.gyro_bias_B_rad_s = bias_B_rad_s_;
+  out.magnetometer_bias_B_T = mag_bias_B_T_;
   out.w_NB_B_rad_s = in.w_gyro_B_rad_s - bias_B_rad_s_;
   out.covariance = P_;
   out.rejected_total = rejected_total_;
