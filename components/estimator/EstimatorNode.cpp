@@ -107,8 +107,13 @@ void EstimatorNode::step(const bus::StepContext& ctx) {
 
   msg::AttitudeEstimate message;
   if (mekf_) {
+    // The rig's gyro reports the rate at the sample time; the MEKF propagates with the mean
+    // rate over the step. With the wheel torque held over each step the rate is piecewise
+    // linear, so the trapezoid ½(ω_k−1 + ω_k) is that mean.
+    const Eigen::Vector3d w_B = bus::vec3(gyro.w_body_rad_s());
     MekfInput in;
-    in.w_gyro_B_rad_s = bus::vec3(gyro.w_body_rad_s());
+    in.w_gyro_B_rad_s = previous_w_B_rad_s_ ? 0.5 * (*previous_w_B_rad_s_ + w_B) : w_B;
+    previous_w_B_rad_s_ = w_B;
     in.sun_B_meas_unit = v.sun_B_unit;
     in.sun_valid = v.sun_valid;
     in.b_B_meas_T = v.b_B_T;

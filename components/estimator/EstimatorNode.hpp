@@ -46,6 +46,7 @@ class EstimatorNode final : public bus::Component {
   ReferenceModel reference_;
   bool use_magnetometer_;          // the field corrects after initialisation
   bool mekf_initialized_ = false;  // the MEKF's previous step had an attitude
+  std::optional<Eigen::Vector3d> previous_w_B_rad_s_;  // [rad/s] gyro rate of the previous step
 };
 
 /// components.<name>, plus the onboard orbit and field knowledge from the
