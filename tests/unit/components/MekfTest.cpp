@@ -466,3 +466,22 @@ TEST_CASE("MEKF calls its estimate invalid when the covariance outgrows the limi
   CHECK_FALSE(samples.back().out.valid);  // roll about the Sun unobserved for 1400 s
   CHECK(samples.back().out.initialized);
 }
+
+TEST_CASE("MEKF re-acquires by TRIAD when one sensor is gated out for too long", "[mekf]") {
+  Spacecraft sc;
+  sc.run(300.0);
+  // The body turns 5° about y between two samples without the gyro seeing it (a stuck-gyro
+  // episode, say): Sun and field now disagree with the estimate by far more than the gate.
+  sc.q_true = sc.q_true * Eigen::Quaterniond(Eigen::AngleAxisd(5.0 * kDeg, Eigen::Vector3d::UnitY()));
+  const auto samples = sc.run(60.0);
+  const auto gap = std::find_if(samples.begin(), samples.end(),
+                                [](const Sample& s) { return s.out.sun == MeasurementUse::kUsed; });
+  REQUIRE(gap != samples.end());
+  const auto rejected_steps = gap - samples.begin();
+  INFO("steps until the Sun is used again: " << rejected_steps);
+  // 100 rejections in a row, then TRIAD at the next step.
+  CHECK(rejected_steps == filterParams().reacquire_after_rejections);
+  CHECK(samples.front().out.sun == MeasurementUse::kRejected);
+  CHECK(samples.back().error_rad < 0.05 * kDeg);
+  CHECK(samples.back().out.valid);
+}
