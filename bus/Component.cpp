@@ -57,10 +57,16 @@ void Component::loop() {
     }
     dropInputsBefore(ctx.step);
     if (std::chrono::steady_clock::now() > next_health) {
-      publishHealth(msg::ComponentState::RUNNING, steps_done_, "stepping");
+      publishHealth(msg::ComponentState::RUNNING, steps_done_, status_);
       next_health += kHealthPeriod;
     }
   }
+}
+
+void Component::setStatus(const std::string& status) {
+  if (status == status_) return;
+  status_ = status;
+  publishHealth(msg::ComponentState::RUNNING, steps_done_, status_);
 }
 
 msg::StepGrant Component::nextGrant() {

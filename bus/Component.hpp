@@ -22,6 +22,10 @@ class Component : public Node {
   /// One step; called with every input ready for ctx.step.
   virtual void step(const StepContext& ctx) = 0;
 
+  /// What the RUNNING health says from now on ("stepping" until set): a
+  /// change is published at once, then repeated by the heartbeat.
+  void setStatus(const std::string& status);
+
  private:
   void loop();
   msg::StepGrant nextGrant();
@@ -29,6 +33,7 @@ class Component : public Node {
   ReaderOf<topics::kStepGrant> grant_reader_;
   WriterOf<topics::kStepDone> done_;
   std::uint64_t steps_done_ = 0;
+  std::string status_ = "stepping";
 };
 
 }  // namespace flatsat::bus

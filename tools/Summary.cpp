@@ -15,6 +15,7 @@
 #include "sim/DynamicsServerParams.hpp"
 #include "tools/SummaryS0.hpp"
 #include "tools/SummaryMagnetic.hpp"
+#include "tools/SummaryEstimator.hpp"
 
 namespace flatsat::tools {
 
@@ -140,6 +141,7 @@ nlohmann::ordered_json summarize(const bus::Scenario& scenario, const std::strin
   s["overruns"] = overruns;
   addS0Metrics(s, scenario, recording);
   summarizeMagnetic(scenario, recording, s);
+  summarizeEstimator(scenario, recording, s);
   s["recording"] = recording_path;
   s["recording_sha256"] = recording.digest({std::string(bus::topics::kHealth.name)});
   summarizeThrusterSequencer(scenario, recording, s);

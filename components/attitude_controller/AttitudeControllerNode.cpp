@@ -14,7 +14,7 @@ SunPointingControllerInput toInput(const msg::AttitudeEstimate& estimate,
   in.sun_B_est_unit = bus::vec3(estimate.sun_body_unit());
   in.w_NB_B_rad_s = bus::vec3(estimate.w_body_rad_s());
   in.wheel_speed_rad_s = bus::vec4(tach.wheel_speed_rad_s());
-  in.valid = estimate.initialized();
+  in.valid = estimate.valid();
   return in;
 }
 

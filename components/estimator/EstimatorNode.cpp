@@ -1,32 +1,49 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "components/estimator/EstimatorNode.hpp"
 
-#include <optional>
-
 #include <algorithm>
 
 #include "bus/Convert.hpp"
-#include "sim/Frames.hpp"
 #include "sim/DynamicsServerParams.hpp"
+#include "sim/Frames.hpp"
 
 namespace flatsat::estimator {
 
 namespace {
 
-AttitudeEstimatorInput toInput(const msg::GyroReading& gyro, const msg::SunSensorReading& sun,
-                               const std::optional<msg::MagnetometerReading>& magnetometer,
-                               const ReferenceVectors& reference) {
-  AttitudeEstimatorInput in;
-  in.w_gyro_B_rad_s = bus::vec3(gyro.w_body_rad_s());
-  in.sun_B_meas_unit = bus::vec3(sun.sun_body_unit());
-  in.sun_valid = sun.valid();
-  if (magnetometer) {
-    in.b_B_meas_T = bus::vec3(magnetometer->b_body_T());
-    in.b_valid = magnetometer->valid() && !magnetometer->saturated();
+/// The vector measurements of one step, whichever sensors the rig has.
+struct Vectors {
+  Eigen::Vector3d sun_B_unit = Eigen::Vector3d::Zero();
+  bool sun_valid = false;
+  Eigen::Vector3d b_B_T = Eigen::Vector3d::Zero();
+  bool b_valid = false;
+};
+
+Vectors toVectors(const std::optional<msg::SunSensorReading>& sun,
+                  const std::optional<msg::MagnetometerReading>& magnetometer) {
+  Vectors v;
+  if (sun) {
+    v.sun_B_unit = bus::vec3(sun->sun_body_unit());
+    v.sun_valid = sun->valid();
   }
-  in.sun_N_ref_unit = reference.sun_N_unit;
-  in.b_N_ref_T = reference.b_N_T;
-  return in;
+  if (magnetometer) {
+    v.b_B_T = bus::vec3(magnetometer->b_body_T());
+    v.b_valid = magnetometer->valid() && !magnetometer->saturated();
+  }
+  return v;
+}
+
+/// "ok", "lost" (samples arrive but are not usable: eclipse, dropout, saturation) or "none".
+const char* sensorState(bool present, bool valid) {
+  if (!present) return "none";
+  return valid ? "ok" : "lost";
+}
+
+template <class Array>
+void putBlock(Array& out, const Eigen::Matrix3d& block) {
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) out[static_cast<std::size_t>(3 * r + c)] = block(r, c);
+  }
 }
 
 msg::AttitudeEstimate toMessage(const AttitudeEstimatorOutput& out) {
@@ -38,6 +55,25 @@ msg::AttitudeEstimate toMessage(const AttitudeEstimatorOutput& out) {
   m.initialized(out.initialized);
   m.sun_used(out.sun_used);
   m.field_used(out.field_used);
+  m.valid(out.initialized && out.q_NB.coeffs().allFinite() && out.w_NB_B_rad_s.allFinite());
+  return m;
+}
+
+msg::AttitudeEstimate toMessage(const MekfOutput& out) {
+  msg::AttitudeEstimate m;
+  bus::put(m.q_inertial_body(), out.q_NB);
+  bus::put(m.w_body_rad_s(), out.w_NB_B_rad_s);
+  bus::put(m.gyro_bias_body_rad_s(), out.gyro_bias_B_rad_s);
+  bus::put(m.sun_body_unit(), out.sun_B_est_unit);
+  m.initialized(out.initialized);
+  m.sun_used(out.sun == MeasurementUse::kUsed);
+  m.field_used(out.field == MeasurementUse::kUsed);
+  m.valid(out.valid);
+  m.has_covariance(true);
+  putBlock(m.attitude_cov_body_rad2(), out.covariance.topLeftCorner<3, 3>());
+  putBlock(m.gyro_bias_cov_body_rad2_s2(), out.covariance.block<3, 3>(3, 3));
+  putBlock(m.attitude_bias_cov_body_rad2_s(), out.covariance.block<3, 3>(0, 3));
+  m.measurements_rejected(out.rejected_total);
   return m;
 }
 
@@ -46,9 +82,17 @@ msg::AttitudeEstimate toMessage(const AttitudeEstimatorOutput& out) {
 EstimatorNode::EstimatorNode(bus::Bus& bus, bus::NodeOptions options,
                              const EstimatorNodeParams& params)
     : Component(bus, std::move(options)),
-      filter_(params.filter),
       reference_(params.reference),
+      use_magnetometer_(params.filter.use_magnetometer),
       jd_epoch_utc_(params.jd_epoch_utc) {
+  if (params.method == EstimatorMethod::kMekf) {
+    mekf_.emplace(params.mekf);
+  } else {
+    mahony_.emplace(params.filter);
+  }
+  if (options_.schedule.count(std::string(bus::topics::kSunSensor.producer))) {
+    sun_ = &addInput(bus::topics::kSunSensor);
+  }
   if (options_.schedule.count(std::string(bus::topics::kMagnetometer.producer))) {
     magnetometer_ = &addInput(bus::topics::kMagnetometer);
   }
@@ -60,15 +104,16 @@ EstimatorNode::EstimatorNode(bus::Bus& bus, bus::NodeOptions options,
 }
 
 void EstimatorNode::stepS0(const bus::StepContext& ctx, const msg::GyroReading& gyro,
-                           const msg::SunSensorReading& sun, const ReferenceVectors& reference) {
+                           const Eigen::Vector3d& sun_B_unit, bool sun_valid,
+                           const ReferenceVectors& reference) {
   const auto tach = tach_->at(ctx.step);
   S0EstimatorInput in;
   in.wheel_speed_rad_s = bus::vec4(tach.wheel_speed_rad_s());
   in.tach_valid = tach.valid();
   in.w_B_rad_s = bus::vec3(gyro.w_body_rad_s());
   in.gyro_valid = gyro.valid();
-  in.sun_B_unit = bus::vec3(sun.sun_body_unit());
-  in.sun_valid = sun.valid();
+  in.sun_B_unit = sun_B_unit;
+  in.sun_valid = sun_valid;
   const double jd_tt = jd_epoch_utc_ + (sim::toSeconds(ctx.sim_time_ns) + sim::kTtMinusUtc_s) / 86400.0;
   in.R_SE_N = sim::R_N_SunEcliptic(reference.sun_N_unit, jd_tt).transpose();
   in.b_N_ref_T = reference.b_N_T;
@@ -108,15 +153,17 @@ void EstimatorNode::stepS0(const bus::StepContext& ctx, const msg::GyroReading& 
   field_estimate_.write(field);
 }
 
+
 void EstimatorNode::step(const bus::StepContext& ctx) {
+  std::optional<msg::SunSensorReading> sun;
   std::optional<msg::MagnetometerReading> magnetometer;
+  if (sun_ != nullptr) sun = sun_->at(ctx.step);
   if (magnetometer_ != nullptr) magnetometer = magnetometer_->at(ctx.step);
-  const auto gyro = gyro_.at(ctx.step);
-  const auto& used = last_gyro_.update(gyro);
-  const auto reference = reference_.step(ctx.sim_time_ns);
-  const auto sun = sun_.at(ctx.step);
+  const auto& gyro = last_gyro_.update(gyro_.at(ctx.step));
+  const Vectors v = toVectors(sun, magnetometer);
+  const ReferenceVectors reference = reference_.step(ctx.sim_time_ns);
   if (s0_) {
-    stepS0(ctx, used, sun, reference);
+    stepS0(ctx, gyro, v.sun_B_unit, v.sun_valid, reference);
   } else {
     msg::CoilRequest none;
     none.header(bus::makeHeader(ctx, name()));
@@ -125,10 +172,46 @@ void EstimatorNode::step(const bus::StepContext& ctx) {
     invalid.header(bus::makeHeader(ctx, name()));
     field_estimate_.write(invalid);
   }
-  const auto in = toInput(used, sun, magnetometer, reference);
-  auto message = toMessage(filter_.step(in, ctx.sim_time_ns));
+
+  msg::AttitudeEstimate message;
+  if (mekf_) {
+    // The rig's gyro reports the rate at the sample time; the MEKF propagates with the mean
+    // rate over the step. With the wheel torque held over each step the rate is piecewise
+    // linear, so the trapezoid ½(ω_k−1 + ω_k) is that mean.
+    const Eigen::Vector3d w_B = bus::vec3(gyro.w_body_rad_s());
+    MekfInput in;
+    in.w_gyro_B_rad_s = previous_w_B_rad_s_ ? 0.5 * (*previous_w_B_rad_s_ + w_B) : w_B;
+    previous_w_B_rad_s_ = w_B;
+    in.sun_B_meas_unit = v.sun_B_unit;
+    in.sun_valid = v.sun_valid;
+    in.b_B_meas_T = v.b_B_T;
+    // Without use_magnetometer the field only initialises the filter (TRIAD), as for Mahony.
+    in.b_valid = v.b_valid && (use_magnetometer_ || !mekf_initialized_);
+    in.sun_N_ref_unit = reference.sun_N_unit;
+    in.b_N_ref_T = reference.b_N_T;
+    const MekfOutput out = mekf_->step(in, ctx.sim_time_ns);
+    mekf_initialized_ = out.initialized;
+    message = toMessage(out);
+  } else {
+    AttitudeEstimatorInput in;
+    in.w_gyro_B_rad_s = bus::vec3(gyro.w_body_rad_s());
+    in.sun_B_meas_unit = v.sun_B_unit;
+    in.sun_valid = v.sun_valid;
+    in.b_B_meas_T = v.b_B_T;
+    in.b_valid = v.b_valid;
+    in.sun_N_ref_unit = reference.sun_N_unit;
+    in.b_N_ref_T = reference.b_N_T;
+    message = toMessage(mahony_->step(in, ctx.sim_time_ns));
+  }
   message.header(bus::makeHeader(ctx, name()));
   estimate_.write(message);
+
+  std::string status = std::string(mekf_ ? "mekf" : "mahony") +
+                       ": gyro " + sensorState(true, gyro_.at(ctx.step).valid()) +
+                       ", sun " + sensorState(sun.has_value(), v.sun_valid) +
+                       ", magnetometer " + sensorState(magnetometer.has_value(), v.b_valid);
+  if (!message.valid()) status += ", estimate INVALID";
+  setStatus(status);
 }
 
 EstimatorNodeParams readParams(const bus::Scenario& scenario, const bus::NodeArgs& args,
@@ -136,17 +219,55 @@ EstimatorNodeParams readParams(const bus::Scenario& scenario, const bus::NodeArg
   bus::ConfigProblems reported_by_dynamics_server;
   const auto plant = sim::readPlant(scenario, reported_by_dynamics_server);
   EstimatorNodeParams p;
-  // The onboard models mirror the plant's (an onboard computer carries the same
-  // IGRF and propagator; its orbit knowledge is the scenario's initial elements).
-  p.reference = {plant.epoch, plant.orbit, plant.orbit_track, plant.field, std::nullopt};
-  if (plant.field_model == sim::FieldModel::kSphericalHarmonics) {
-    auto harmonics = plant.field_harmonics;
-    harmonics.degree = std::min(harmonics.degree, plant.field_degree);
-    p.reference.field_harmonics = harmonics;
-  }
-  if (plant.atmosphere) p.reference.orbit_track.forces.atmosphere = *plant.atmosphere;
+  p.reference = {plant.epoch, plant.orbit, {}, plant.field, std::nullopt};
   p.jd_epoch_utc = sim::julianDate(plant.epoch);
   auto r = scenario.componentParams(args.name, problems);
+  std::string method = "mahony";
+  r.read("method", method);
+  if (method == "mekf") {
+    p.method = EstimatorMethod::kMekf;
+  } else if (method != "mahony") {
+    r.problem("method", "'" + method + "' is not mahony or mekf");
+  }
+  // The onboard models mirror the plant's by default (an onboard computer carries the
+  // same IGRF; GNSS keeps its orbit); dipole / kepler are the cruder choices.
+  std::string reference_field = "plant";
+  r.read("reference_field", reference_field);
+  if (reference_field == "plant") {
+    if (plant.field_model == sim::FieldModel::kSphericalHarmonics) {
+      auto harmonics = plant.field_harmonics;
+      harmonics.degree = std::min(harmonics.degree, plant.field_degree);
+      p.reference.field_harmonics = harmonics;
+    }
+  } else if (reference_field != "dipole") {
+    r.problem("reference_field", "'" + reference_field + "' is not dipole or plant");
+  }
+  std::string reference_orbit = "plant";
+  r.read("reference_orbit", reference_orbit);
+  if (reference_orbit == "plant") {
+    p.reference.orbit_track = plant.orbit_track;
+    if (plant.atmosphere) p.reference.orbit_track.forces.atmosphere = *plant.atmosphere;
+  } else if (reference_orbit != "kepler") {
+    r.problem("reference_orbit", "'" + reference_orbit + "' is not kepler or plant");
+  }
+  r.read("use_magnetometer", p.filter.use_magnetometer);
+  p.filter.sun_only_init = !scenario.hasComponent("magnetometer");
+  r.read("kp_per_s", p.filter.kp_per_s, "1/s");
+  r.read("ki_per_s2", p.filter.ki_per_s2, "1/s^2");
+  r.read("max_bias_rad_s", p.filter.max_bias_rad_s, "rad/s");
+  r.read("gyro_arw_rad_per_sqrt_s", p.mekf.gyro_arw_rad_per_sqrt_s, "-");
+  r.read("gyro_rrw_rad_per_s_sqrt_s", p.mekf.gyro_rrw_rad_per_s_sqrt_s, "-");
+  r.read("sun_sigma_rad", p.mekf.sun_sigma_rad, "rad");
+  r.read("magnetometer_noise_T", p.mekf.magnetometer_noise_T, "T");
+  r.read("field_model_sigma_rad", p.mekf.field_model_sigma_rad, "rad");
+  r.read("magnetometer_bias_sigma_T", p.mekf.magnetometer_bias_sigma_T, "T");
+  r.read("magnetometer_bias_rw_T_per_sqrt_s", p.mekf.magnetometer_bias_rw_T_per_sqrt_s, "-");
+  r.read("star_tracker_sigma_body_rad", p.mekf.star_tracker_sigma_B_rad, "rad");
+  r.read("initial_attitude_sigma_rad", p.mekf.initial_attitude_sigma_rad, "rad");
+  r.read("initial_bias_sigma_rad_s", p.mekf.initial_bias_sigma_rad_s, "rad/s");
+  r.read("gate_probability", p.mekf.gate_probability, "-");
+  r.read("max_attitude_sigma_rad", p.mekf.max_attitude_sigma_rad, "rad");
+  r.read("reacquire_after_rejections", p.mekf.reacquire_after_rejections);
   if (r.has("s0")) {
     auto s0 = r.section("s0");
     bool enabled = false;
@@ -173,12 +294,7 @@ EstimatorNodeParams readParams(const bus::Scenario& scenario, const bus::NodeArg
     s0.finish();
     if (enabled) p.s0 = q;
   }
-  r.read("kp_per_s", p.filter.kp_per_s, "1/s");
-  r.read("ki_per_s2", p.filter.ki_per_s2, "1/s^2");
-  r.read("max_bias_rad_s", p.filter.max_bias_rad_s, "rad/s");
-  r.read("use_magnetometer", p.filter.use_magnetometer);
-  p.filter.sun_only_init = !scenario.hasComponent("magnetometer");
-  r.problems(p.filter.validate());
+  r.problems(p.method == EstimatorMethod::kMekf ? p.mekf.validate() : p.filter.validate());
   r.finish();
   return p;
 }

@@ -1,27 +1,38 @@
 // SPDX-License-Identifier: Apache-2.0
 #pragma once
+#include <optional>
+#include <string>
+
 #include "bus/Component.hpp"
 #include "bus/NodeMain.hpp"
 #include "components/common/LastValid.hpp"
 #include "components/estimator/AttitudeEstimator.hpp"
-#include <optional>
-
+#include "components/estimator/Mekf.hpp"
 #include "components/estimator/ReferenceModel.hpp"
 #include "components/estimator/S0Estimator.hpp"
 
 namespace flatsat::estimator {
 
+/// Which filter the node runs.
+enum class EstimatorMethod {
+  kMahony,  // TRIAD + explicit complementary filter (AttitudeEstimator), no covariance
+  kMekf,    // multiplicative EKF (Mekf), publishes its covariance
+};
+
 struct EstimatorNodeParams {
-  AttitudeEstimatorParams filter;
+  EstimatorMethod method = EstimatorMethod::kMahony;  // [-] mahony | mekf
+  AttitudeEstimatorParams filter;                     // kMahony; its use_magnetometer for both
+  MekfParams mekf;                                    // used by kMekf
   ReferenceModelParams reference;
   std::optional<S0EstimatorParams> s0;  // seed S0 field estimate (components.<name>.s0.enabled)
   double jd_epoch_utc = 0.0;            // [d] for the ecliptic of date
 };
 
-/// Attitude estimator: gyro, Sun sensor and (when the rig has one)
-/// magnetometer in, attitude estimate out. With S0 on, it also asks the
-/// unloading controller for coil windows and publishes the field estimate
-/// from the wheel momentum (seed S0, no magnetometer needed).
+/// Attitude estimator: gyro in, plus the Sun sensor and the magnetometer when the rig has
+/// them; attitude estimate out. A sensor without valid samples (eclipse, dropout) is ridden
+/// through on the others, and the health message names it. With S0 on, it also asks the
+/// unloading controller for coil windows and publishes the field estimate from the wheel
+/// momentum (seed S0, no magnetometer needed).
 class EstimatorNode final : public bus::Component {
  public:
   EstimatorNode(bus::Bus& bus, bus::NodeOptions options, const EstimatorNodeParams& params);
@@ -30,16 +41,20 @@ class EstimatorNode final : public bus::Component {
   void step(const bus::StepContext& ctx) override;
 
   bus::InputOf<bus::topics::kGyro>& gyro_ = addInput(bus::topics::kGyro);
-  bus::InputOf<bus::topics::kSunSensor>& sun_ = addInput(bus::topics::kSunSensor);
+  bus::InputOf<bus::topics::kSunSensor>* sun_ = nullptr;              // optional
   bus::InputOf<bus::topics::kMagnetometer>* magnetometer_ = nullptr;  // optional
   bus::WriterOf<bus::topics::kAttitudeEstimate>& estimate_ =
       addOutput(bus::topics::kAttitudeEstimate);
   LastValid<msg::GyroReading> last_gyro_;  // rides through gyro dropouts
-  AttitudeEstimator filter_;
+  std::optional<AttitudeEstimator> mahony_;
+  std::optional<Mekf> mekf_;
   ReferenceModel reference_;
+  bool use_magnetometer_;          // the field corrects after initialisation
+  bool mekf_initialized_ = false;  // the MEKF's previous step had an attitude
+  std::optional<Eigen::Vector3d> previous_w_B_rad_s_;  // [rad/s] gyro rate of the previous step
 
-  void stepS0(const bus::StepContext& ctx, const msg::GyroReading& gyro,
-              const msg::SunSensorReading& sun, const ReferenceVectors& reference);
+  void stepS0(const bus::StepContext& ctx, const msg::GyroReading& gyro, const Eigen::Vector3d& sun_B_unit,
+              bool sun_valid, const ReferenceVectors& reference);
   std::optional<S0Estimator> s0_;
   double jd_epoch_utc_;
   bus::InputOf<bus::topics::kWheelTach>* tach_ = nullptr;           // S0
