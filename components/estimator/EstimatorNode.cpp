@@ -46,13 +46,20 @@ void putBlock(Array& out, const Eigen::Matrix3d& block) {
   }
 }
 
-msg::AttitudeEstimate toMessage(const AttitudeEstimatorOutput& out) {
+/// The fields both filters' outputs share.
+template <class Output>
+msg::AttitudeEstimate commonFields(const Output& out) {
   msg::AttitudeEstimate m;
   bus::put(m.q_inertial_body(), out.q_NB);
   bus::put(m.w_body_rad_s(), out.w_NB_B_rad_s);
   bus::put(m.gyro_bias_body_rad_s(), out.gyro_bias_B_rad_s);
   bus::put(m.sun_body_unit(), out.sun_B_est_unit);
   m.initialized(out.initialized);
+  return m;
+}
+
+msg::AttitudeEstimate toMessage(const AttitudeEstimatorOutput& out) {
+  msg::AttitudeEstimate m = commonFields(out);
   m.sun_used(out.sun_used);
   m.field_used(out.field_used);
   m.valid(out.initialized && out.q_NB.coeffs().allFinite() && out.w_NB_B_rad_s.allFinite());
@@ -60,12 +67,7 @@ msg::AttitudeEstimate toMessage(const AttitudeEstimatorOutput& out) {
 }
 
 msg::AttitudeEstimate toMessage(const MekfOutput& out) {
-  msg::AttitudeEstimate m;
-  bus::put(m.q_inertial_body(), out.q_NB);
-  bus::put(m.w_body_rad_s(), out.w_NB_B_rad_s);
-  bus::put(m.gyro_bias_body_rad_s(), out.gyro_bias_B_rad_s);
-  bus::put(m.sun_body_unit(), out.sun_B_est_unit);
-  m.initialized(out.initialized);
+  msg::AttitudeEstimate m = commonFields(out);
   m.sun_used(out.sun == MeasurementUse::kUsed);
   m.field_used(out.field == MeasurementUse::kUsed);
   m.valid(out.valid);
