@@ -109,8 +109,13 @@ std::string Recording::meta(const std::string& key) const {
 void Recording::forEach(
     const std::string& topic,
     const std::function<void(std::uint64_t, const std::string&, const std::vector<std::uint8_t>&)>&
-        visit) const {
-  Statement s(db_, "SELECT step, source, payload FROM samples WHERE topic = ? ORDER BY step, source",
+        visit,
+    Order order) const {
+  // Rows are inserted as samples arrive, so rowid is the arrival order.
+  Statement s(db_,
+              order == Order::kStep
+                  ? "SELECT step, source, payload FROM samples WHERE topic = ? ORDER BY step, source"
+                  : "SELECT step, source, payload FROM samples WHERE topic = ? ORDER BY rowid",
               path_);
   sqlite3_bind_text(s.stmt, 1, topic.c_str(), -1, SQLITE_TRANSIENT);
   while (sqlite3_step(s.stmt) == SQLITE_ROW) {

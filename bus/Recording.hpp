@@ -28,10 +28,14 @@ class Recording {
   void setMeta(const std::string& key, const std::string& value);
   std::string meta(const std::string& key) const;
 
-  /// Visits one topic's samples in step order.
+  enum class Order { kStep, kArrival };
+  /// Visits one topic's samples in step order, or in the order the recorder
+  /// received them (what an exclusive-ownership reader saw: a bridge stamps
+  /// its samples with its own, possibly older, step).
   void forEach(const std::string& topic,
                const std::function<void(std::uint64_t step, const std::string& source,
-                                        const std::vector<std::uint8_t>& payload)>& visit) const;
+                                        const std::vector<std::uint8_t>& payload)>& visit,
+               Order order = Order::kStep) const;
   std::uint64_t count(const std::string& topic) const;
   /// SHA-256 (hex) over every sample of every topic except `excluded`, in
   /// (topic, source, step) order: independent of arrival order and of

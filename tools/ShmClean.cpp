@@ -33,14 +33,17 @@ std::set<std::string> filesInUse() {
 
 }  // namespace
 
-std::vector<std::string> cleanStaleSharedMemory() {
+std::vector<std::string> cleanStaleSharedMemory(std::chrono::seconds min_age) {
   std::vector<std::string> removed;
   const auto used = filesInUse();
+  const auto now = fs::file_time_type::clock::now();
   std::error_code ec;
   for (const auto& entry : fs::directory_iterator("/dev/shm", ec)) {
     const auto name = entry.path().filename().string();
     const bool fastdds = name.rfind("fast_datasharing_", 0) == 0 || name.rfind("fastrtps_", 0) == 0;
     if (!fastdds || used.count(name) != 0) continue;
+    const auto modified = fs::last_write_time(entry.path(), ec);
+    if (ec || now - modified < min_age) continue;
     if (fs::remove(entry.path(), ec)) removed.push_back(name);
   }
   return removed;

@@ -3,6 +3,7 @@
 #include "tools/SummaryS1.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <sstream>
@@ -47,6 +48,10 @@ nlohmann::ordered_json summarize(const bus::Scenario& scenario, const std::strin
   std::uint64_t pointing_count = 0;
   MomentumStats h;
   std::uint64_t late_commands = 0;
+  // A wheel saturates when its momentum reaches the limit the plant holds it
+  // at (sim/RigidBodyWheels.cpp); each arrival there is one event.
+  std::uint64_t saturation_events = 0;
+  std::array<bool, sim::kMaxWheels> saturated{};
   using TruthDef = std::remove_cvref_t<decltype(bus::topics::kTruth)>;
   recording.forEach(std::string(bus::topics::kTruth.name),
                     [&](std::uint64_t, const std::string&, const std::vector<std::uint8_t>& bytes) {
@@ -61,6 +66,12 @@ nlohmann::ordered_json summarize(const bus::Scenario& scenario, const std::strin
                       // The slower dipole command is due every `divider` steps;
                       // only a wheel command older than its step was late.
                       if (truth.wheel_cmd_age_steps() > 0) ++late_commands;
+                      for (int i = 0; i < plant.body.wheel_count; ++i) {
+                        const double wheel_h = plant.body.wheel_inertia_kg_m2(i) * truth.wheel_speed_rad_s()[i];
+                        const bool at_limit = std::abs(wheel_h) >= plant.body.wheel_max_momentum_Nms(i) * (1 - 1e-9);
+                        if (at_limit && !saturated[i]) ++saturation_events;
+                        saturated[i] = at_limit;
+                      }
                       if (t < scenario.acquisition_s) return;
                       const Eigen::Vector3d axis_N = bus::quat(truth.q_inertial_body()) * axis_B;
                       const double error = std::atan2(
@@ -87,6 +98,7 @@ nlohmann::ordered_json summarize(const bus::Scenario& scenario, const std::strin
   s["wheel_momentum_Nms_start"] = h.start;
   s["wheel_momentum_Nms_max"] = h.max;
   s["wheel_momentum_Nms_end"] = h.end;
+  s["wheel_saturation_events"] = saturation_events;
   s["wheel_momentum_fraction_max"] = capacity > 0 ? h.max / capacity : 0.0;
   s["mode"] = scenario.pacing == bus::Pacing::kPaced ? "paced" : "lockstep";
   s["wheel_commands_late"] = late_commands;
@@ -115,19 +127,22 @@ nlohmann::ordered_json summarize(const bus::Scenario& scenario, const std::strin
                                                  const std::vector<std::uint8_t>&) {
       if (!previous.empty() && source != previous) {
         // gap_s: from the old owner's last sample to the new owner's first, the
-        // time readers had nothing new on the topic.
+        // time readers had nothing new on the topic (none when a bridge's first
+        // sample carries an older step than the emulator's last).
+        const double gap_steps =
+            std::max(0.0, static_cast<double>(step) - static_cast<double>(previous_step));
         switches.push_back({{"time_s", static_cast<double>(step) * scenario.step_s},
                             {"topic", def.name},
                             {"from", previous},
                             {"to", source},
-                            {"gap_s", static_cast<double>(step - previous_step) * scenario.step_s}});
+                            {"gap_s", gap_steps * scenario.step_s}});
       }
       if (source != previous && std::find(sources.begin(), sources.end(), source) == sources.end()) {
         sources.push_back(source);
       }
       previous = source;
       previous_step = step;
-    });
+    }, bus::Recording::Order::kArrival);
     if (!sources.empty()) producers[std::string(def.name)] = sources;
   });
   s["ownership_switches"] = switches;

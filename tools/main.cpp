@@ -1,5 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // flatsat: run, check and benchmark rig scenarios.
+#include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -80,7 +82,7 @@ int run(const RunOptions& o, nlohmann::ordered_json* summary_out = nullptr) {
     return kExitBadInput;
   }
   // Segments left by processes killed in an earlier run go first.
-  tools::cleanStaleSharedMemory();
+  tools::cleanStaleSharedMemory(tools::kShmGrace);
   const std::string bin_dir = fs::canonical("/proc/self/exe").parent_path().string();
   if (!o.quiet) {
     std::cerr << "flatsat: running '" << scenario.name << "' (" << scenario.components.size()
@@ -90,8 +92,8 @@ int run(const RunOptions& o, nlohmann::ordered_json* summary_out = nullptr) {
   const auto result = tools::launch(
       scenario, {bin_dir, run_dir, fs::absolute(scenario.file).string(), o.log_level, !o.quiet});
   if (!result.ok) {
-    // A killed process cannot remove its shared-memory segments.
-    tools::cleanStaleSharedMemory();
+    // Segments of the processes just killed stay for kShmGrace: the next
+    // start or `flatsat clean-shm` removes them.
     std::cerr << "error: " << result.failure << "\n";
     return kExitFailed;
   }
@@ -183,6 +185,11 @@ int main(int argc, char** argv) {
 
   auto* clean_cmd = app.add_subcommand(
       "clean-shm", "remove Fast DDS shared-memory files no live process uses");
+  double clean_min_age_s = 0.0;
+  clean_cmd
+      ->add_option("--min-age-s", clean_min_age_s,
+                   "keep files younger than this [s] (a rig starting now may not have mapped them yet)")
+      ->check(CLI::Range(0.0, 86400.0));
 
   CLI11_PARSE(app, argc, argv);
   if (run_cmd->parsed()) return run(run_options);
@@ -193,7 +200,8 @@ int main(int argc, char** argv) {
     if (tool->parsed()) return tool_exit;
   }
   if (clean_cmd->parsed()) {
-    for (const auto& name : tools::cleanStaleSharedMemory()) std::cout << "removed " << name << "\n";
+    const std::chrono::seconds min_age{static_cast<long>(std::ceil(clean_min_age_s))};
+    for (const auto& name : tools::cleanStaleSharedMemory(min_age)) std::cout << "removed " << name << "\n";
     return 0;
   }
   if (bench_cmd->parsed()) return bench(bench_scenario, bench_duration_s);

@@ -26,27 +26,19 @@ test::RigRun runRig(const std::string& out, const std::string& extra) {
   return test::runScenario(kDefault, out, extra);
 }
 
-double momentumGrowth(const nlohmann::json& s) {
-  return s["wheel_momentum_Nms_max"].get<double>() - s["wheel_momentum_Nms_start"].get<double>();
-}
-
 }  // namespace
 
 TEST_CASE("default rig closes the loop: Sun pointing held, momentum unloaded",
           "[system][slow]") {
+  // The comparison with unloading off is UnloadingTest's (10 orbits).
   const auto on = runRig(freshDir("on"), "");
-  const auto off = runRig(freshDir("off"), "--set components.unloading_controller.enabled=false");
   INFO(on.summary.dump(2));
-  INFO(off.summary.dump(2));
-
   CHECK(on.summary["processes"].get<int>() >= 8);
   CHECK(on.summary["steps"].get<double>() >= 3 * 5700 / 0.1);  // 3 orbits at 560 km
   CHECK(on.summary["pointing_error_deg_max"].get<double>() < 0.5);
   const double capacity = on.summary["wheel_capacity_Nms"].get<double>();
   CHECK(on.summary["wheel_momentum_Nms_max"].get<double>() < 0.2 * capacity);
-  // Without unloading the disturbances accumulate in the wheels.
-  CHECK(momentumGrowth(off.summary) >= 3.0 * momentumGrowth(on.summary));
-  CHECK(off.summary["pointing_error_deg_max"].get<double>() < 0.5);
+  CHECK(on.summary["wheel_saturation_events"].get<int>() == 0);
 }
 
 TEST_CASE("two runs of a scenario record bit-identical samples", "[system]") {
