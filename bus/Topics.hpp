@@ -42,6 +42,8 @@ inline constexpr TopicDef<SunSensorReading, SunSensorReadingPubSubType> kSunSens
     "flatsat/sun_sensor", QosKind::kStepped, "sun_sensor"};
 inline constexpr TopicDef<GyroReading, GyroReadingPubSubType> kGyro{
     "flatsat/gyro", QosKind::kStepped, "gyro"};
+inline constexpr TopicDef<StarTrackerReading, StarTrackerReadingPubSubType> kStarTracker{
+    "flatsat/star_tracker", QosKind::kStepped, "star_tracker"};
 inline constexpr TopicDef<WheelTachReading, WheelTachReadingPubSubType> kWheelTach{
     "flatsat/wheel_tach", QosKind::kStepped, "wheel_tach"};
 inline constexpr TopicDef<AttitudeEstimate, AttitudeEstimatePubSubType> kAttitudeEstimate{
@@ -77,6 +79,7 @@ void forEachTopic(F&& f) {
   f(kFaultCmd); f(kFaultEvent); f(kFieldEstimate); f(kCoilRequest); f(kCoilWindow);
   f(kThrusterCmd);
   f(kUnloadingModeCmd);
+  f(kStarTracker);
 }
 
 }  // namespace flatsat::bus

@@ -8,6 +8,7 @@
 #include "components/magnetometer_bridge/MagnetometerBridgeNode.hpp"
 #include "components/magnetometer_device/MagnetometerDeviceNode.hpp"
 #include "components/recorder/RecorderNode.hpp"
+#include "components/star_tracker/StarTrackerNode.hpp"
 #include "components/sun_sensor/SunSensorNode.hpp"
 #include "components/thruster_sequencer/ThrusterSequencerNode.hpp"
 #include "components/unloading_controller/UnloadingControllerNode.hpp"
@@ -45,6 +46,7 @@ const std::vector<ComponentKind>& componentKinds() {
       kind("magnetometer_bridge", magnetometer_bridge::readParams),
       kind("magnetometer_device", magnetometer_device::readParams),
       kind("thruster_sequencer", thruster_sequencer::readParams),
+      kind("star_tracker", star_tracker::readParams),
   };
   return kinds;
 }

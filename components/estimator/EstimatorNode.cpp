@@ -98,6 +98,9 @@ EstimatorNode::EstimatorNode(bus::Bus& bus, bus::NodeOptions options,
   if (options_.schedule.count(std::string(bus::topics::kMagnetometer.producer))) {
     magnetometer_ = &addInput(bus::topics::kMagnetometer);
   }
+  if (mekf_ && options_.schedule.count(std::string(bus::topics::kStarTracker.producer))) {
+    star_tracker_ = &addInput(bus::topics::kStarTracker);
+  }
   if (params.s0) {
     s0_.emplace(*params.s0);
     tach_ = &addInput(bus::topics::kWheelTach);
@@ -191,6 +194,12 @@ void EstimatorNode::step(const bus::StepContext& ctx) {
     in.b_valid = v.b_valid && (use_magnetometer_ || !mekf_initialized_);
     in.sun_N_ref_unit = reference.sun_N_unit;
     in.b_N_ref_T = reference.b_N_T;
+    if (star_tracker_ != nullptr) {
+      const auto& star = star_tracker_->at(ctx.step);
+      in.q_NB_star = bus::quat(star.q_inertial_body()).normalized();
+      in.star_valid = star.valid() && in.q_NB_star.coeffs().allFinite();
+      star_valid_ = in.star_valid;
+    }
     const MekfOutput out = mekf_->step(in, ctx.sim_time_ns);
     mekf_initialized_ = out.initialized;
     message = toMessage(out);
@@ -212,6 +221,7 @@ void EstimatorNode::step(const bus::StepContext& ctx) {
                        ": gyro " + sensorState(true, gyro_.at(ctx.step).valid()) +
                        ", sun " + sensorState(sun.has_value(), v.sun_valid) +
                        ", magnetometer " + sensorState(magnetometer.has_value(), v.b_valid);
+  if (star_tracker_ != nullptr) status += std::string(", star tracker ") + sensorState(true, star_valid_);
   if (!message.valid()) status += ", estimate INVALID";
   setStatus(status);
 }

@@ -43,6 +43,7 @@ class EstimatorNode final : public bus::Component {
   bus::InputOf<bus::topics::kGyro>& gyro_ = addInput(bus::topics::kGyro);
   bus::InputOf<bus::topics::kSunSensor>* sun_ = nullptr;              // optional
   bus::InputOf<bus::topics::kMagnetometer>* magnetometer_ = nullptr;  // optional
+  bus::InputOf<bus::topics::kStarTracker>* star_tracker_ = nullptr;   // optional, MEKF only
   bus::WriterOf<bus::topics::kAttitudeEstimate>& estimate_ =
       addOutput(bus::topics::kAttitudeEstimate);
   LastValid<msg::GyroReading> last_gyro_;  // rides through gyro dropouts
@@ -51,6 +52,7 @@ class EstimatorNode final : public bus::Component {
   ReferenceModel reference_;
   bool use_magnetometer_;          // the field corrects after initialisation
   bool mekf_initialized_ = false;  // the MEKF's previous step had an attitude
+  bool star_valid_ = false;        // the star tracker's sample of this step was usable
   std::optional<Eigen::Vector3d> previous_w_B_rad_s_;  // [rad/s] gyro rate of the previous step
 
   void stepS0(const bus::StepContext& ctx, const msg::GyroReading& gyro, const Eigen::Vector3d& sun_B_unit,

@@ -1,0 +1,19 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "components/star_tracker/StarTrackerNode.hpp"
+
+namespace flatsat::star_tracker {
+
+EmulatorParams<StarTrackerParams> readParams(const bus::Scenario& scenario, const bus::NodeArgs& args,
+                                             bus::ConfigProblems& problems) {
+  return readEmulatorParams<StarTrackerParams>(
+      scenario, args.name, 3, "rad", problems, [&](bus::ParamReader& r, StarTrackerParams& m) {
+        r.read("q_body_sensor", m.q_body_sensor);
+        r.read("noise_cross_rad", m.noise_cross_rad, "rad");
+        r.read("noise_about_rad", m.noise_about_rad, "rad");
+        r.read("max_rate_rad_s", m.max_rate_rad_s, "rad/s");
+        r.read("sun_exclusion_rad", m.sun_exclusion_rad, "rad");
+        r.read("earth_exclusion_rad", m.earth_exclusion_rad, "rad");
+      });
+}
+
+}  // namespace flatsat::star_tracker
