@@ -91,9 +91,12 @@ std::vector<std::string> ownAddresses() {
 }
 
 /// The rig across hosts: this host's address among the peers is the only
-/// interface, for data and discovery alike. Shared memory is off: network
-/// namespaces (and containers) often share one /dev/shm, and Fast DDS would
-/// then carry the traffic through it instead of the network the rig tests.
+/// interface, for data and discovery alike. The shared-memory transport is
+/// off: network namespaces (and containers) often share one /dev/shm, and
+/// Fast DDS would carry the traffic through it instead of the network the rig
+/// tests. Data sharing (DATA_SHARING AUTO) still joins writers and readers
+/// with the same host id, which Fast DDS derives from the interface
+/// addresses: processes of one namespace or machine, never two.
 dds::DomainParticipantQos peersQos(std::uint32_t domain, const std::vector<std::string>& peers) {
   std::string own;
   const auto local = ownAddresses();
