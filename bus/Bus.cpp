@@ -1,7 +1,13 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "bus/Bus.hpp"
 
+#include <arpa/inet.h>
+#include <ifaddrs.h>
+#include <netinet/in.h>
+
+#include <algorithm>
 #include <cstdlib>
+#include <sstream>
 #include <stdexcept>
 
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
@@ -22,12 +28,28 @@ constexpr std::uint32_t kMaxDomainId = 232;  // 7400 + 250 d + offsets must stay
 /// metatraffic port; the rig plus tools stays well below it.
 constexpr std::uint32_t kMaxLocalParticipants = 48;
 
-Locator_t loopbackLocator(std::uint32_t port) {
+Locator_t udpLocator(const std::string& address, std::uint32_t port) {
   Locator_t locator;
   locator.kind = LOCATOR_KIND_UDPv4;
-  IPLocator::setIPv4(locator, 127, 0, 0, 1);
+  IPLocator::setIPv4(locator, address);
   locator.port = port;
   return locator;
+}
+
+Locator_t loopbackLocator(std::uint32_t port) { return udpLocator("127.0.0.1", port); }
+
+/// Unicast discovery: SPDP goes to the metatraffic ports of the first
+/// participants of the domain on each host (RTPS 2.2 §9.6.1.1 port mapping:
+/// 7400 + 250 domain + 10 + 2 participant id).
+void addInitialPeers(dds::DomainParticipantQos& qos, std::uint32_t domain,
+                     const std::vector<std::string>& hosts) {
+  auto& builtin = qos.wire_protocol().builtin;
+  const auto& ports = qos.wire_protocol().port;
+  for (const auto& host : hosts) {
+    for (std::uint32_t id = 0; id < kMaxLocalParticipants; ++id) {
+      builtin.initialPeersList.push_back(udpLocator(host, ports.getUnicastPort(domain, id)));
+    }
+  }
 }
 
 /// Transports are set here, in code, from a default-constructed QoS: a
@@ -48,10 +70,55 @@ dds::DomainParticipantQos loopbackQos(std::uint32_t domain) {
   builtin.metatrafficMulticastLocatorList.clear();
   builtin.metatrafficUnicastLocatorList.push_back(loopbackLocator(0));
   qos.wire_protocol().default_unicast_locator_list.push_back(loopbackLocator(0));
-  const auto& ports = qos.wire_protocol().port;
-  for (std::uint32_t id = 0; id < kMaxLocalParticipants; ++id) {
-    builtin.initialPeersList.push_back(loopbackLocator(ports.getUnicastPort(domain, id)));
+  addInitialPeers(qos, domain, {"127.0.0.1"});
+  return qos;
+}
+
+/// The IPv4 addresses of this host's (this network namespace's) interfaces.
+std::vector<std::string> ownAddresses() {
+  std::vector<std::string> addresses;
+  ifaddrs* list = nullptr;
+  if (::getifaddrs(&list) != 0) return addresses;
+  for (const ifaddrs* it = list; it != nullptr; it = it->ifa_next) {
+    if (it->ifa_addr == nullptr || it->ifa_addr->sa_family != AF_INET) continue;
+    char text[INET_ADDRSTRLEN] = {};
+    const auto* in = reinterpret_cast<const sockaddr_in*>(it->ifa_addr);
+    ::inet_ntop(AF_INET, &in->sin_addr, text, sizeof text);
+    addresses.emplace_back(text);
   }
+  ::freeifaddrs(list);
+  return addresses;
+}
+
+/// The rig across hosts: this host's address among the peers is the only
+/// interface, for data and discovery alike. The shared-memory transport is
+/// off: network namespaces (and containers) often share one /dev/shm, and
+/// Fast DDS would carry the traffic through it instead of the network the rig
+/// tests. Data sharing (DATA_SHARING AUTO) still joins writers and readers
+/// with the same host id, which Fast DDS derives from the interface
+/// addresses: processes of one namespace or machine, never two.
+dds::DomainParticipantQos peersQos(std::uint32_t domain, const std::vector<std::string>& peers) {
+  std::string own;
+  const auto local = ownAddresses();
+  for (const auto& peer : peers) {
+    if (std::find(local.begin(), local.end(), peer) != local.end()) own = peer;
+  }
+  if (own.empty()) {
+    std::string held;
+    for (const auto& a : local) held += " " + a;
+    throw std::invalid_argument("FLATSAT_PEERS: none of the peers is an address of this host"
+                                " (it has:" + held + "); list this host's rig address too");
+  }
+  dds::DomainParticipantQos qos;
+  qos.transport().use_builtin_transports = false;
+  auto udp = std::make_shared<eprosima::fastdds::rtps::UDPv4TransportDescriptor>();
+  udp->interfaceWhiteList.emplace_back(own);
+  qos.transport().user_transports.push_back(udp);
+  auto& builtin = qos.wire_protocol().builtin;
+  builtin.metatrafficMulticastLocatorList.clear();
+  builtin.metatrafficUnicastLocatorList.push_back(udpLocator(own, 0));
+  qos.wire_protocol().default_unicast_locator_list.push_back(udpLocator(own, 0));
+  addInitialPeers(qos, domain, peers);
   return qos;
 }
 
@@ -74,10 +141,26 @@ std::uint32_t domainFromEnvironment(std::uint32_t scenario_domain) {
   return static_cast<std::uint32_t>(value);
 }
 
-NetworkProfile profileFromEnvironment() {
-  const char* text = std::getenv("FLATSAT_NETWORK");
-  return (text != nullptr && std::string(text) == "1") ? NetworkProfile::kNetwork
-                                                       : NetworkProfile::kLoopback;
+BusNetwork networkFromEnvironment() {
+  BusNetwork network;
+  const char* multicast = std::getenv("FLATSAT_NETWORK");
+  if (multicast != nullptr && std::string(multicast) == "1") network.profile = NetworkProfile::kNetwork;
+  const char* peers = std::getenv("FLATSAT_PEERS");
+  if (peers == nullptr || *peers == '\0') return network;
+  if (network.profile == NetworkProfile::kNetwork) {
+    throw std::invalid_argument("FLATSAT_PEERS and FLATSAT_NETWORK=1: choose one");
+  }
+  network.profile = NetworkProfile::kPeers;
+  std::istringstream list(peers);
+  for (std::string peer; std::getline(list, peer, ',');) {
+    in_addr parsed{};
+    if (::inet_pton(AF_INET, peer.c_str(), &parsed) != 1) {
+      throw std::invalid_argument("FLATSAT_PEERS='" + std::string(peers) + "': '" + peer +
+                                  "' is not an IPv4 address (a,b,c: dotted quads)");
+    }
+    network.peers.push_back(peer);
+  }
+  return network;
 }
 
 Bus::Bus(const BusOptions& options) : options_(options) {
@@ -86,7 +169,8 @@ Bus::Bus(const BusOptions& options) : options_(options) {
                                 ": must be in 0.." + std::to_string(kMaxDomainId));
   }
   auto qos = options.profile == NetworkProfile::kLoopback ? loopbackQos(options.domain_id)
-                                                          : networkQos();
+             : options.profile == NetworkProfile::kPeers ? peersQos(options.domain_id, options.peers)
+                                                         : networkQos();
   qos.name(options.participant_name);
   participant_ = dds::DomainParticipantFactory::get_instance()->create_participant(
       options.domain_id, qos);

@@ -5,6 +5,7 @@
 #include <memory>
 #include <mutex>
 #include <string>
+#include <vector>
 
 #include <fastdds/dds/domain/DomainParticipant.hpp>
 #include <fastdds/dds/publisher/Publisher.hpp>
@@ -19,6 +20,9 @@ namespace flatsat::bus {
 enum class NetworkProfile {
   kLoopback,  ///< 127.0.0.1 + shared memory, unicast discovery only: nothing leaves the host
   kNetwork,   ///< UDP on every interface with multicast discovery (opt-in, for multi-host rigs)
+  /// UDP only on this host's address among `peers`, unicast discovery to the
+  /// peers, no shared memory, no multicast: a rig across hosts or namespaces
+  kPeers,
 };
 
 struct BusOptions {
@@ -26,12 +30,21 @@ struct BusOptions {
   NetworkProfile profile = NetworkProfile::kLoopback;
   std::string participant_name = "flatsat";
   QosTuning tuning;  ///< applied to every endpoint of this participant
+  /// kPeers: IPv4 addresses of the rig's hosts, this host's among them
+  std::vector<std::string> peers;
+};
+
+/// A process's network from its environment: FLATSAT_PEERS=a,b,... selects
+/// kPeers with those hosts, FLATSAT_NETWORK=1 kNetwork, neither kLoopback.
+struct BusNetwork {
+  NetworkProfile profile = NetworkProfile::kLoopback;
+  std::vector<std::string> peers;
 };
 
 /// Domain id for a process: FLATSAT_DOMAIN overrides the scenario's value.
 std::uint32_t domainFromEnvironment(std::uint32_t scenario_domain);
-/// Profile for a process: FLATSAT_NETWORK=1 selects the network profile.
-NetworkProfile profileFromEnvironment();
+/// Throws std::invalid_argument naming the variable when it is malformed.
+BusNetwork networkFromEnvironment();
 
 /// One DDS participant with one publisher and one subscriber; topics are
 /// created once per name and shared by every endpoint of the process.

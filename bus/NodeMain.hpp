@@ -46,8 +46,9 @@ int runNode(int argc, char** argv, const std::string& default_name, Read&& read,
       spdlog::error("{}: invalid parameters:\n{}", args.name, problems.joined());
       return 2;
     }
-    Bus bus({domainFromEnvironment(scenario.domain_id), profileFromEnvironment(), args.name,
-             qosTuning(scenario, ownership_strength)});
+    const BusNetwork network = networkFromEnvironment();
+    Bus bus({domainFromEnvironment(scenario.domain_id), network.profile, args.name,
+             qosTuning(scenario, ownership_strength), network.peers});
     auto node = make(bus, nodeOptions(scenario, args.name), params);
     node->run();
     return 0;

@@ -13,12 +13,15 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <mutex>
+#include <set>
 #include <thread>
 
 #include <spdlog/spdlog.h>
 
 #include "bus/Endpoints.hpp"
 #include "bus/Shutdown.hpp"
+#include "bus/Stamp.hpp"
 #include "bus/Topics.hpp"
 #include "bus/NodeMain.hpp"
 #include "components/Registry.hpp"
@@ -40,20 +43,21 @@ struct Child {
   bool required = true;  // a stepped component: its death stops the rig
 };
 
-pid_t spawn(const std::string& exe, const std::vector<std::string>& args, const std::string& log) {
+/// Starts argv[0] (looked up on PATH when it has no slash) with stdout and
+/// stderr into `log`.
+pid_t spawn(const std::vector<std::string>& args, const std::string& log) {
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(),
                                    O_WRONLY | O_CREAT | O_TRUNC, 0644);
   posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
   std::vector<char*> argv;
-  argv.push_back(const_cast<char*>(exe.c_str()));
   for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
   argv.push_back(nullptr);
   pid_t pid = -1;
-  const int rc = posix_spawn(&pid, exe.c_str(), &actions, nullptr, argv.data(), environ);
+  const int rc = posix_spawnp(&pid, args.front().c_str(), &actions, nullptr, argv.data(), environ);
   posix_spawn_file_actions_destroy(&actions);
-  if (rc != 0) throw std::runtime_error("cannot start " + exe + ": " + std::strerror(rc));
+  if (rc != 0) throw std::runtime_error("cannot start " + args.front() + ": " + std::strerror(rc));
   return pid;
 }
 
@@ -146,27 +150,83 @@ class Progress {
   bus::ReaderOf<bus::topics::kStepGrant> reader_;
 };
 
+/// Notes when each external component first shows up on the health topic.
+class Joins {
+ public:
+  Joins(bus::Bus& bus, const bus::Scenario& scenario, Clock::time_point start)
+      : start_(start), waiting_(externals(scenario)), reader_(bus, bus::topics::kHealth, [this](const msg::Health& health) {
+          const auto source = bus::text(health.header().source());
+          std::lock_guard lock(mutex_);
+          if (waiting_.erase(source) > 0) {
+            joined_[source] = std::chrono::duration<double>(Clock::now() - start_).count();
+            fresh_.push_back(source);
+          }
+        }) {}
+
+  /// Logs the joins since the last call.
+  void report() {
+    std::lock_guard lock(mutex_);
+    for (const auto& name : fresh_) {
+      spdlog::info("external {} joined the bus {:.2f} s after launch", name, joined_[name]);
+    }
+    fresh_.clear();
+  }
+  std::map<std::string, double> joined() {
+    std::lock_guard lock(mutex_);
+    return joined_;
+  }
+  std::string missing() {
+    std::lock_guard lock(mutex_);
+    std::string names;
+    for (const auto& name : waiting_) names += " " + name;
+    return names;
+  }
+
+ private:
+  static std::set<std::string> externals(const bus::Scenario& scenario) {
+    std::set<std::string> names;
+    for (const auto& c : scenario.components) {
+      if (!c.launched) names.insert(c.name);
+    }
+    return names;
+  }
+
+  Clock::time_point start_;
+  std::mutex mutex_;
+  std::set<std::string> waiting_;
+  std::map<std::string, double> joined_;
+  std::vector<std::string> fresh_;
+  bus::ReaderOf<bus::topics::kHealth> reader_;
+};
+
 }  // namespace
 
 LaunchResult launch(const bus::Scenario& scenario, const LaunchOptions& options) {
   LaunchResult result;
   const fs::path logs = fs::path(options.run_dir) / "logs";
   fs::create_directories(logs);
-  bus::Bus bus({bus::domainFromEnvironment(scenario.domain_id), bus::profileFromEnvironment(),
-                "flatsat-launcher", bus::qosTuning(scenario, bus::kEmulatorStrength)});
+  const auto network = bus::networkFromEnvironment();
+  bus::Bus bus({bus::domainFromEnvironment(scenario.domain_id), network.profile,
+                "flatsat-launcher", bus::qosTuning(scenario, bus::kEmulatorStrength),
+                network.peers});
   Progress progress(bus, options.progress);
 
   const auto start = Clock::now();
+  Joins joins(bus, scenario, start);
   std::vector<Child> children;
   std::vector<const bus::ComponentEntry*> late;  // bridges that start after a delay
   const auto startChild = [&](const bus::ComponentEntry& component) {
     const auto* kind = findComponentKind(component.name);
     Child child{component.name, -1, true, (logs / (component.name + ".log")).string(),
                 component.scheduled};
-    child.pid = spawn((fs::path(options.bin_dir) / kind->executable).string(),
-                      {"--scenario", options.scenario_file, "--name", component.name, "--out",
-                       options.run_dir, "--log", options.log_level},
-                      child.log);
+    std::vector<std::string> argv;
+    if (auto it = options.prefixes.find(component.name); it != options.prefixes.end()) {
+      argv = it->second;
+    }
+    argv.insert(argv.end(), {(fs::path(options.bin_dir) / kind->executable).string(), "--scenario",
+                             options.scenario_file, "--name", component.name, "--out",
+                             options.run_dir, "--log", options.log_level});
+    child.pid = spawn(argv, child.log);
     spdlog::debug("started {} (pid {})", component.name, child.pid);
     children.push_back(child);
   };
@@ -213,6 +273,7 @@ LaunchResult launch(const bus::Scenario& scenario, const LaunchOptions& options)
       }
     }
     if (!result.failure.empty() || bus::shutdownRequested()) break;
+    joins.report();
     if (Clock::now() >= next_print) {
       progress.print(false);
       next_print += std::chrono::milliseconds(500);
@@ -223,10 +284,15 @@ LaunchResult launch(const bus::Scenario& scenario, const LaunchOptions& options)
     result.failure = "interrupted; stopping every component";
   }
   stopAll(children);
+  joins.report();
+  if (const auto missing = joins.missing(); !result.failure.empty() && !missing.empty()) {
+    result.failure += "\nexternal components that never joined the bus:" + missing;
+  }
   progress.print(true);
   result.launch_seconds = std::chrono::duration<double>(Clock::now() - start).count();
   result.step_seconds = progress.stepSeconds();
   result.steps = progress.steps();
+  result.external_joined_s = joins.joined();
   result.ok = result.failure.empty();
   return result;
 }

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 #pragma once
+#include <map>
 #include <string>
 #include <vector>
 
@@ -13,6 +14,9 @@ struct LaunchOptions {
   std::string scenario_file;  ///< the resolved scenario every process reads
   std::string log_level = "info";
   bool progress = true;       ///< live progress line on stderr
+  /// component -> command its executable runs under (e.g. `ip netns exec fs-a`,
+  /// `ssh box`): the argv words put before the executable and its arguments
+  std::map<std::string, std::vector<std::string>> prefixes;
 };
 
 struct LaunchResult {
@@ -22,6 +26,8 @@ struct LaunchResult {
   double step_seconds = 0.0;    ///< [s] wall time from the first to the last step
   std::uint64_t steps = 0;      ///< [-] steps granted
   std::size_t processes = 0;
+  /// [s] for each external component, wall time from the launch to its first health sample
+  std::map<std::string, double> external_joined_s;
 };
 
 /// Starts one process per scenario component, shows progress, and waits

@@ -152,6 +152,8 @@ nlohmann::ordered_json summarize(const bus::Scenario& scenario, const std::strin
   nlohmann::ordered_json roles = nlohmann::ordered_json::object();
   for (const auto& c : scenario.components) roles[c.name] = c.role;
   s["roles"] = roles;
+  // [s] from the launch to each external component's first health sample.
+  s["external_joined_s"] = launch.external_joined_s;
   s["stale_inputs"] = stale;
   s["overruns"] = overruns;
   addS0Metrics(s, scenario, recording);

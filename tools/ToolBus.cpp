@@ -71,7 +71,9 @@ ToolBus::ToolBus(const std::string& tool_name, int domain_option)
     : domain_(resolveDomain(domain_option)) {
   bus::BusOptions options;
   options.domain_id = domain_;
-  options.profile = bus::profileFromEnvironment();
+  const auto network = bus::networkFromEnvironment();
+  options.profile = network.profile;
+  options.peers = network.peers;
   options.participant_name = "flatsat-" + tool_name;
   bus_ = disabledBus(options);
   bus_->participant().set_listener(this, dds::StatusMask::none());

@@ -6,7 +6,10 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <iterator>
+#include <map>
 #include <optional>
+#include <sstream>
 
 #include <CLI/CLI.hpp>
 #include <spdlog/sinks/stdout_color_sinks.h>
@@ -59,9 +62,38 @@ struct RunOptions {
   std::vector<std::string> overrides;
   std::optional<std::uint64_t> seed;  // --seed: replaces the scenario's seed (dispersed initial conditions, noise)
   std::string log_level = "info";
+  std::vector<std::string> prefixes;  // --prefix COMPONENT=COMMAND
   bool quiet = false;
   bool json = false;
 };
+
+/// `--prefix COMPONENT=COMMAND` into component -> argv words. `*` stands
+/// for every component without a prefix of its own; a placement table may
+/// name components this scenario does not start (absent or external).
+bool parsePrefixes(const std::vector<std::string>& options, const bus::Scenario& scenario,
+                   std::map<std::string, std::vector<std::string>>& prefixes) {
+  std::map<std::string, std::vector<std::string>> given;
+  for (const auto& option : options) {
+    const auto equals = option.find('=');
+    const std::string name = option.substr(0, equals);
+    std::istringstream words(equals == std::string::npos ? "" : option.substr(equals + 1));
+    std::vector<std::string> argv{std::istream_iterator<std::string>(words), {}};
+    std::string problem;
+    if (argv.empty()) problem = "expected COMPONENT=COMMAND with a command";
+    else if (name != "*" && findComponentKind(name) == nullptr) problem = "no component kind '" + name + "'";
+    if (!problem.empty()) {
+      std::cerr << "error: --prefix " << option << ": " << problem << "\n";
+      return false;
+    }
+    given[name] = argv;
+  }
+  for (const auto& c : scenario.components) {
+    if (!c.launched) continue;
+    if (auto it = given.find(c.name); it != given.end()) prefixes[c.name] = it->second;
+    else if (auto all = given.find("*"); all != given.end()) prefixes[c.name] = all->second;
+  }
+  return true;
+}
 
 int run(const RunOptions& o, nlohmann::ordered_json* summary_out = nullptr) {
   bus::Scenario original;
@@ -81,16 +113,24 @@ int run(const RunOptions& o, nlohmann::ordered_json* summary_out = nullptr) {
     std::cerr << "error: " << e.what() << "\n";
     return kExitBadInput;
   }
+  const std::string bin_dir = fs::canonical("/proc/self/exe").parent_path().string();
+  tools::LaunchOptions launch_options{bin_dir, run_dir, fs::absolute(scenario.file).string(),
+                                      o.log_level, !o.quiet};
+  if (!parsePrefixes(o.prefixes, scenario, launch_options.prefixes)) return kExitBadInput;
   // Segments left by processes killed in an earlier run go first.
   tools::cleanStaleSharedMemory(tools::kShmGrace);
-  const std::string bin_dir = fs::canonical("/proc/self/exe").parent_path().string();
   if (!o.quiet) {
     std::cerr << "flatsat: running '" << scenario.name << "' (" << scenario.components.size()
               << " processes, domain " << bus::domainFromEnvironment(scenario.domain_id)
               << ") into " << run_dir << "\n";
   }
-  const auto result = tools::launch(
-      scenario, {bin_dir, run_dir, fs::absolute(scenario.file).string(), o.log_level, !o.quiet});
+  tools::LaunchResult result;
+  try {
+    result = tools::launch(scenario, launch_options);
+  } catch (const std::exception& e) {  // the launcher's own participant (FLATSAT_PEERS, ...)
+    std::cerr << "error: " << e.what() << "\n";
+    return kExitFailed;
+  }
   if (!result.ok) {
     // Segments of the processes just killed stay for kShmGrace: the next
     // start or `flatsat clean-shm` removes them.
@@ -160,6 +200,9 @@ int main(int argc, char** argv) {
   run_cmd->add_flag("-q,--quiet", run_options.quiet, "no progress, no table");
   run_cmd->add_flag("--json", run_options.json, "print the summary as JSON");
   run_cmd->add_option("--seed", run_options.seed, "scenario seed: dispersed initial conditions and noise");
+  run_cmd->add_option("--prefix", run_options.prefixes,
+                      "COMPONENT=COMMAND: start that component under COMMAND (split at spaces), "
+                      "e.g. gyro='ip netns exec fs-b'; * for every other component");
 
   std::string check_file;
   auto* check_cmd = app.add_subcommand("check", "check a scenario without running it");
