@@ -21,6 +21,8 @@
 #include "tools/OrbitCommand.hpp"
 #include "tools/PhysicsBench.hpp"
 #include "tools/PlotCommand.hpp"
+#include "tools/RecordCommand.hpp"
+#include "tools/ReplayCommand.hpp"
 #include "tools/RunDirectory.hpp"
 #include "tools/ShmClean.hpp"
 #include "tools/StudyCommand.hpp"
@@ -179,7 +181,8 @@ int main(int argc, char** argv) {
   const std::vector<CLI::App*> tool_cmds = {
       tools::addTopicsCommand(app, tool_exit), tools::addEchoCommand(app, tool_exit),
       tools::addHzCommand(app, tool_exit),     tools::addHealthCommand(app, tool_exit),
-      tools::addExportCommand(app, tool_exit), tools::addPlotCommand(app, tool_exit)};
+      tools::addExportCommand(app, tool_exit), tools::addPlotCommand(app, tool_exit),
+      tools::addRecordCommand(app, tool_exit), tools::addReplayCommand(app, tool_exit)};
 
   auto* clean_cmd = app.add_subcommand(
       "clean-shm", "remove Fast DDS shared-memory files no live process uses");

@@ -126,7 +126,8 @@ test::CommandResult tool(const std::string& args) {
 }  // namespace
 
 TEST_CASE("every tool subcommand explains itself with --help", "[system][tools]") {
-  for (const std::string command : {"topics", "echo", "hz", "health", "export", "plot"}) {
+  for (const std::string command :
+       {"topics", "echo", "hz", "health", "export", "plot", "record", "replay"}) {
     CAPTURE(command);
     const auto help = test::runCommand(kFlatsat + " " + command + " --help");
     INFO(help.output);
