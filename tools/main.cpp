@@ -13,6 +13,7 @@
 #include "bus/Shutdown.hpp"
 #include "components/Registry.hpp"
 #include "tools/FieldCommand.hpp"
+#include "tools/CmdCommand.hpp"
 #include "tools/EchoCommand.hpp"
 #include "tools/ExportCommand.hpp"
 #include "tools/HealthCommand.hpp"
@@ -182,7 +183,8 @@ int main(int argc, char** argv) {
       tools::addTopicsCommand(app, tool_exit), tools::addEchoCommand(app, tool_exit),
       tools::addHzCommand(app, tool_exit),     tools::addHealthCommand(app, tool_exit),
       tools::addExportCommand(app, tool_exit), tools::addPlotCommand(app, tool_exit),
-      tools::addRecordCommand(app, tool_exit), tools::addReplayCommand(app, tool_exit)};
+      tools::addRecordCommand(app, tool_exit), tools::addReplayCommand(app, tool_exit),
+      tools::addCmdCommand(app, tool_exit)};
 
   auto* clean_cmd = app.add_subcommand(
       "clean-shm", "remove Fast DDS shared-memory files no live process uses");

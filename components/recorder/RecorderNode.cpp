@@ -33,6 +33,8 @@ RecorderNode::RecorderNode(bus::Bus& bus, bus::NodeOptions options, const Record
   fault_commands_ = recordAsItComes(bus, bus::topics::kFaultCmd);
   fault_events_ = recordAsItComes(bus, bus::topics::kFaultEvent);
   mode_commands_ = recordAsItComes(bus, bus::topics::kUnloadingModeCmd);
+  param_commands_ = recordAsItComes(bus, bus::topics::kParamCmd);
+  acks_ = recordAsItComes(bus, bus::topics::kCommandAck);
   grants_ = recordAsItComes(bus, bus::topics::kStepGrant);
   for (const auto& [key, value] : params.meta) recording_.setMeta(key, value);
 }

@@ -22,7 +22,7 @@ struct RecorderParams {
 /// Records every stepped topic of the rig as samples arrive. In lockstep it
 /// is gated like any component: it reports StepDone(k) only once every
 /// sample due at k is stored, so the recording is complete by construction.
-/// Health, faults, mode commands and the step grants are recorded too,
+/// Health, faults, operator commands with their acknowledgements and the step grants are recorded too,
 /// and the rig's schedule and timing go to the meta table: enough for
 /// `flatsat replay` to stand in for the rest of the rig around one component.
 class RecorderNode final : public bus::Component {
@@ -46,6 +46,8 @@ class RecorderNode final : public bus::Component {
   std::unique_ptr<bus::ReaderOf<bus::topics::kFaultCmd>> fault_commands_;
   std::unique_ptr<bus::ReaderOf<bus::topics::kFaultEvent>> fault_events_;
   std::unique_ptr<bus::ReaderOf<bus::topics::kUnloadingModeCmd>> mode_commands_;
+  std::unique_ptr<bus::ReaderOf<bus::topics::kParamCmd>> param_commands_;
+  std::unique_ptr<bus::ReaderOf<bus::topics::kCommandAck>> acks_;
   std::unique_ptr<bus::ReaderOf<bus::topics::kStepGrant>> grants_;
 };
 

@@ -5,19 +5,13 @@
 // in lockstep) publishes the recorded estimates again, byte for byte.
 #include <catch2/catch.hpp>
 
-#include <signal.h>
-#include <spawn.h>
-#include <sys/wait.h>
-
 #include <chrono>
 #include <filesystem>
-#include <fstream>
 #include <thread>
 
+#include "tests/support/Background.hpp"
 #include "tests/support/RecordingRows.hpp"
 #include "tests/support/Rig.hpp"
-
-extern char** environ;
 
 namespace fs = std::filesystem;
 using namespace flatsat;
@@ -25,47 +19,6 @@ using namespace flatsat;
 namespace {
 
 const std::string kDefault = std::string(FLATSAT_SCENARIO_DIR) + "/default.yaml";
-
-/// A process started with /bin/sh, output to `log`; killed if still running
-/// when the test ends.
-class Background {
- public:
-  Background(const std::string& command, const std::string& log) {
-    const std::string line = "exec " + command + " > " + log + " 2>&1";
-    const char* argv[] = {"/bin/sh", "-c", line.c_str(), nullptr};
-    REQUIRE(::posix_spawn(&pid_, "/bin/sh", nullptr, nullptr, const_cast<char**>(argv), environ) == 0);
-  }
-  ~Background() {
-    if (pid_ > 0) {
-      ::kill(pid_, SIGTERM);
-      int status = 0;
-      ::waitpid(pid_, &status, 0);
-    }
-  }
-  Background(const Background&) = delete;
-  Background& operator=(const Background&) = delete;
-  /// Waits up to `seconds` for the exit; the exit code, -1 on timeout.
-  int wait(double seconds) {
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
-    while (std::chrono::steady_clock::now() < deadline) {
-      int status = 0;
-      if (::waitpid(pid_, &status, WNOHANG) == pid_) {
-        pid_ = -1;
-        return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-      }
-      std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    }
-    return -1;
-  }
-
- private:
-  pid_t pid_ = -1;
-};
-
-std::string readFile(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
 
 /// A finished lockstep run of the default rig; its folder.
 std::string finishedRun(const std::string& tag, int duration_s) {
@@ -89,7 +42,7 @@ TEST_CASE("a replayed recording of the estimator's inputs reproduces its recorde
   fs::create_directories(rerun);
   // A fresh estimator with the run's scenario; the replay is its time master
   // and the producer of every recorded topic it does not publish itself.
-  Background estimator(std::string(FLATSAT_BIN_DIR) + "/flatsat-estimator --scenario " + run +
+  test::Background estimator(std::string(FLATSAT_BIN_DIR) + "/flatsat-estimator --scenario " + run +
                            "/scenario.yaml --name estimator --out " + rerun,
                        rerun + "/estimator.log");
   const auto replay = test::runCommand(test::kFlatsat + " replay " + run +
@@ -97,7 +50,7 @@ TEST_CASE("a replayed recording of the estimator's inputs reproduces its recorde
                                        "/replay.sqlite --timeout 60");
   INFO(replay.output);
   REQUIRE(replay.exit_code == 0);
-  INFO(readFile(rerun + "/estimator.log"));
+  INFO(test::readFile(rerun + "/estimator.log"));
   REQUIRE(estimator.wait(20) == 0);
 
   for (const std::string topic : {"flatsat/attitude_estimate", "flatsat/field_estimate"}) {
@@ -123,12 +76,12 @@ TEST_CASE("record attached to a running rig stores the rig's own recorder's samp
   const std::string attached = run + "-attached.sqlite";
   fs::remove(attached);
   const std::string log = run + "-record.log";
-  Background recorder(test::kFlatsat + " record -o " + attached +
+  test::Background recorder(test::kFlatsat + " record -o " + attached +
                           " -t gyro -t attitude_estimate -t step_grant --seconds 120",
                       log);
   // The tool's participant is up once it says what it records.
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
-  while (readFile(log).find("flatsat record:") == std::string::npos) {
+  while (test::readFile(log).find("flatsat record:") == std::string::npos) {
     REQUIRE(std::chrono::steady_clock::now() < deadline);
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
@@ -138,7 +91,7 @@ TEST_CASE("record attached to a running rig stores the rig's own recorder's samp
   REQUIRE(rig.exit_code == 0);
   // It stops by itself once the rig's stop grant came.
   const int recorded_exit = recorder.wait(30);
-  INFO(readFile(log));
+  INFO(test::readFile(log));
   REQUIRE(recorded_exit == 0);
 
   constexpr std::uint64_t kFinalStep = 300;  // 30 s at 0.1 s

@@ -127,7 +127,7 @@ test::CommandResult tool(const std::string& args) {
 
 TEST_CASE("every tool subcommand explains itself with --help", "[system][tools]") {
   for (const std::string command :
-       {"topics", "echo", "hz", "health", "export", "plot", "record", "replay"}) {
+       {"topics", "echo", "hz", "health", "export", "plot", "record", "replay", "cmd"}) {
     CAPTURE(command);
     const auto help = test::runCommand(kFlatsat + " " + command + " --help");
     INFO(help.output);
