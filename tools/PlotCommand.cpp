@@ -30,6 +30,7 @@ struct PlotOptions {
   std::string out;       ///< empty: <recording's folder>/plots
   std::string scenario;  ///< empty: scenario.yaml next to the recording, if there
   std::size_t max_points = 20000;
+  bool list = true;  ///< print each PNG's path
 };
 
 /// gnuplot single-quoted string: a quote is doubled.
@@ -344,12 +345,25 @@ int plot(const PlotOptions& o) {
       std::cerr << "error: gnuplot did not write " << (out / png).string() << "\n";
       return 1;
     }
-    std::cout << (out / png).string() << "\n";
+    if (o.list) std::cout << (out / png).string() << "\n";
   }
   return 0;
 }
 
 }  // namespace
+
+int plotRecording(const std::string& recording, const std::string& out_dir, bool list) {
+  PlotOptions o;
+  o.recording = recording;
+  o.out = out_dir;
+  o.list = list;
+  try {
+    return plot(o);
+  } catch (const std::exception& e) {
+    std::cerr << "error: " << e.what() << "\n";
+    return 1;
+  }
+}
 
 CLI::App* addPlotCommand(CLI::App& app, int& exit_code) {
   auto options = std::make_shared<PlotOptions>();

@@ -62,6 +62,7 @@ struct RunOptions {
   std::string log_level = "info";
   bool quiet = false;
   bool json = false;
+  bool plots = true;  // the review figures into <run>/plots (flatsat plot)
 };
 
 int run(const RunOptions& o, nlohmann::ordered_json* summary_out = nullptr) {
@@ -107,6 +108,16 @@ int run(const RunOptions& o, nlohmann::ordered_json* summary_out = nullptr) {
     std::cout << "summary (" << (fs::path(run_dir) / "summary.json").string() << "):\n"
               << tools::summaryTable(summary);
   }
+  if (o.plots) {
+    // A run that worked stays a success when only its figures fail (no gnuplot).
+    const fs::path plots = fs::path(run_dir) / "plots";
+    if (tools::plotRecording((fs::path(run_dir) / "recording.sqlite").string(), plots.string(),
+                             false) != 0) {
+      std::cerr << "flatsat: warning: the figures were not drawn; the run itself succeeded\n";
+    } else if (!o.quiet && !o.json) {
+      std::cout << "figures: " << plots.string() << "\n";
+    }
+  }
   if (summary_out != nullptr) *summary_out = summary;
   return 0;
 }
@@ -128,6 +139,7 @@ int bench(const std::string& scenario, double duration_s) {
   o.out = out;
   o.overrides = {"duration_s=" + std::to_string(duration_s), "duration_orbits=null"};
   o.quiet = true;
+  o.plots = false;
   o.log_level = "warn";
   nlohmann::ordered_json summary;
   const int rc = run(o, &summary);
@@ -160,6 +172,8 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--log", run_options.log_level, "components' log level");
   run_cmd->add_flag("-q,--quiet", run_options.quiet, "no progress, no table");
   run_cmd->add_flag("--json", run_options.json, "print the summary as JSON");
+  run_cmd->add_flag("!--no-plots", run_options.plots,
+                    "skip the review figures (default: flatsat plot into <run>/plots)");
   run_cmd->add_option("--seed", run_options.seed, "scenario seed: dispersed initial conditions and noise");
 
   std::string check_file;

@@ -37,7 +37,7 @@ TEST_CASE("cmd sends mode, fault and parameter commands that the components ackn
   test::exportTestDomain();
   const std::string run = test::freshDir("cmd");
   test::Background rig(test::kFlatsat + " run " + std::string(FLATSAT_SCENARIO_DIR) +
-                           "/default.yaml -q --out " + run +
+                           "/default.yaml -q --no-plots --out " + run +
                            " --set mode=paced --set duration_orbits=null --set duration_s=15",
                        run + ".log");
   REQUIRE(test::waitForText(fs::path(run) / "logs" / "dynamics_server.log",

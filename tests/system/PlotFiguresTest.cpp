@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
-// flatsat plot on runs that carry more than the default rig: the MEKF's
-// covariance (3σ bounds around the estimation error) and the thruster
-// sequencer's firings.
+// The figures `flatsat run` draws by default (flatsat plot) on runs that
+// carry more than the default rig: the MEKF's covariance (3σ bounds around
+// the estimation error) and the thruster sequencer's firings.
 #include <catch2/catch.hpp>
 
 #include <filesystem>
@@ -14,7 +14,7 @@ using namespace flatsat;
 
 namespace {
 
-/// Runs `scenario` for `duration_s` and plots it; the plot folder.
+/// Runs `scenario` for `duration_s`; the run's plot folder.
 fs::path plotted(const std::string& scenario, const std::string& tag, int duration_s) {
   test::exportTestDomain();
   const std::string run = test::freshDir(tag);
@@ -24,9 +24,6 @@ fs::path plotted(const std::string& scenario, const std::string& tag, int durati
                                     std::to_string(duration_s));
   INFO(rig.output);
   REQUIRE(rig.exit_code == 0);
-  const auto plot = test::runCommand(test::kFlatsat + " plot " + run + "/recording.sqlite");
-  INFO(plot.output);
-  REQUIRE(plot.exit_code == 0);
   return fs::path(run) / "plots";
 }
 
@@ -37,8 +34,8 @@ bool isPng(const fs::path& png) {
 
 }  // namespace
 
-TEST_CASE("plot draws the filter's 3-sigma bounds around the estimation error and the "
-          "thruster firings",
+TEST_CASE("run draws the figures by default: the filter's 3-sigma bounds around the "
+          "estimation error and the thruster firings",
           "[system][tools][plot]") {
   const fs::path mekf = plotted("mekf.yaml", "plot-mekf", 60);
   CHECK(isPng(mekf / "estimator_error.png"));

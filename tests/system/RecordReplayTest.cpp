@@ -24,7 +24,7 @@ const std::string kDefault = std::string(FLATSAT_SCENARIO_DIR) + "/default.yaml"
 std::string finishedRun(const std::string& tag, int duration_s) {
   test::exportTestDomain();
   const std::string dir = test::freshDir(tag);
-  const auto run = test::runCommand(test::kFlatsat + " run " + kDefault + " -q --out " + dir +
+  const auto run = test::runCommand(test::kFlatsat + " run " + kDefault + " -q --no-plots --out " + dir +
                                     " --set duration_orbits=null --set duration_s=" +
                                     std::to_string(duration_s));
   INFO(run.output);
@@ -85,7 +85,7 @@ TEST_CASE("record attached to a running rig stores the rig's own recorder's samp
     REQUIRE(std::chrono::steady_clock::now() < deadline);
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
-  const auto rig = test::runCommand(test::kFlatsat + " run " + kDefault + " -q --out " + run +
+  const auto rig = test::runCommand(test::kFlatsat + " run " + kDefault + " -q --no-plots --out " + run +
                                     " --set duration_orbits=null --set duration_s=30");
   INFO(rig.output);
   REQUIRE(rig.exit_code == 0);
