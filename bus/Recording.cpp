@@ -124,6 +124,23 @@ void Recording::forEach(
   }
 }
 
+void Recording::forEachAt(
+    const std::string& topic, std::uint64_t step,
+    const std::function<void(const std::string&, const std::vector<std::uint8_t>&)>& visit) const {
+  Statement s(db_, "SELECT source, payload FROM samples WHERE topic = ? AND step = ? ORDER BY source",
+              path_);
+  sqlite3_bind_text(s.stmt, 1, topic.c_str(), -1, SQLITE_TRANSIENT);
+  sqlite3_bind_int64(s.stmt, 2, static_cast<sqlite3_int64>(step));
+  while (sqlite3_step(s.stmt) == SQLITE_ROW) visit(text(s.stmt, 0), blob(s.stmt, 1));
+}
+
+std::map<std::string, std::set<std::string>> Recording::topicSources() const {
+  Statement s(db_, "SELECT DISTINCT topic, source FROM samples", path_);
+  std::map<std::string, std::set<std::string>> out;
+  while (sqlite3_step(s.stmt) == SQLITE_ROW) out[text(s.stmt, 0)].insert(text(s.stmt, 1));
+  return out;
+}
+
 std::uint64_t Recording::count(const std::string& topic) const {
   Statement s(db_, "SELECT COUNT(*) FROM samples WHERE topic = ?", path_);
   sqlite3_bind_text(s.stmt, 1, topic.c_str(), -1, SQLITE_TRANSIENT);

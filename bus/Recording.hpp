@@ -2,6 +2,8 @@
 #pragma once
 #include <cstdint>
 #include <functional>
+#include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -36,7 +38,13 @@ class Recording {
                const std::function<void(std::uint64_t step, const std::string& source,
                                         const std::vector<std::uint8_t>& payload)>& visit,
                Order order = Order::kStep) const;
+  /// Visits the samples of one topic stamped `step` (one per source).
+  void forEachAt(const std::string& topic, std::uint64_t step,
+                 const std::function<void(const std::string& source,
+                                          const std::vector<std::uint8_t>& payload)>& visit) const;
   std::uint64_t count(const std::string& topic) const;
+  /// Every recorded topic with the sources that published it.
+  std::map<std::string, std::set<std::string>> topicSources() const;
   /// SHA-256 (hex) over every sample of every topic except `excluded`, in
   /// (topic, source, step) order: independent of arrival order and of
   /// wall-clock topics.

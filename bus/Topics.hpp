@@ -8,6 +8,7 @@
 #include "bus/Qos.hpp"
 #include "msg/ActuationPubSubTypes.h"
 #include "msg/CoilsPubSubTypes.h"
+#include "msg/CommandsPubSubTypes.h"
 #include "msg/EstimationPubSubTypes.h"
 #include "msg/FaultsPubSubTypes.h"
 #include "msg/HealthPubSubTypes.h"
@@ -68,6 +69,10 @@ inline constexpr TopicDef<FaultEvent, FaultEventPubSubType> kFaultEvent{
     "flatsat/fault_event", QosKind::kCommand, ""};
 inline constexpr TopicDef<ModeCmd, ModeCmdPubSubType> kUnloadingModeCmd{
     "flatsat/unloading_mode_cmd", QosKind::kCommand, ""};
+inline constexpr TopicDef<ParamCmd, ParamCmdPubSubType> kParamCmd{
+    "flatsat/param_cmd", QosKind::kCommand, ""};
+inline constexpr TopicDef<CommandAck, CommandAckPubSubType> kCommandAck{
+    "flatsat/command_ack", QosKind::kCommand, ""};
 }  // namespace topics
 
 /// Calls f(def) for every topic of the registry (recorder, tools).
@@ -78,7 +83,7 @@ void forEachTopic(F&& f) {
   f(kWheelTach); f(kAttitudeEstimate); f(kWheelTorqueCmd); f(kDipoleCmd); f(kHealth);
   f(kFaultCmd); f(kFaultEvent); f(kFieldEstimate); f(kCoilRequest); f(kCoilWindow);
   f(kThrusterCmd);
-  f(kUnloadingModeCmd);
+  f(kUnloadingModeCmd); f(kParamCmd); f(kCommandAck);
   f(kStarTracker);
 }
 

@@ -4,6 +4,8 @@
 #include <spawn.h>
 #include <sys/wait.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -28,6 +30,7 @@ struct PlotOptions {
   std::string out;       ///< empty: <recording's folder>/plots
   std::string scenario;  ///< empty: scenario.yaml next to the recording, if there
   std::size_t max_points = 20000;
+  bool list = true;  ///< print each PNG's path
 };
 
 /// gnuplot single-quoted string: a quote is doubled.
@@ -93,8 +96,23 @@ std::vector<std::string> writeScript(const PlotData& d, const PlotContext& c, co
                            std::fprintf(f, "%.7g %.7g", r.t_s * ta.scale, std::max(r.error_deg, 1e-7));
                            v3(f, r.error_B_deg);
                            v3(f, r.b_B_uT);
+                           // The error's sign convention differs from the
+                           // filter's (q_true = q exp(dθ/2)): the bound is symmetric.
+                           v3(f, r.sigma3_B_deg.value_or(Eigen::Vector3d::Constant(NAN)));
                            std::fprintf(f, "\n");
                          });
+  {
+    // Every firing step: a stride would drop pulses.
+    std::FILE* f = std::fopen((data / "thruster.dat").c_str(), "w");
+    if (f == nullptr) throw std::runtime_error("cannot write " + data.string());
+    for (const auto& r : d.thruster) {
+      std::fprintf(f, "%.7g %.7g %d %d", r.t_s * ta.scale, r.total_on_time_s, r.pulse,
+                   r.braking ? r.pulse : 0);
+      for (double on : r.on_time_s) std::fprintf(f, " %.7g", on);
+      std::fprintf(f, "\n");
+    }
+    std::fclose(f);
+  }
   writeData<DipoleRow>(data / "dipole.dat", d.dipole, max_points, [&](std::FILE* f, const DipoleRow& r) {
     std::fprintf(f, "%.7g", r.t_s * ta.scale);
     v3(f, r.m_B_Am2);
@@ -204,12 +222,61 @@ std::vector<std::string> writeScript(const PlotData& d, const PlotContext& c, co
 
   if (!d.estimate.empty()) {
     begin("estimator_error.png", "Attitude estimation error (estimate vs truth)");
-    s << "set multiplot layout 2,1 title 'Attitude estimation error (estimate vs truth)'\n"
-      << "set title 'Rotation angle between estimated and true attitude'\nset ylabel 'error angle [deg]'\nset logscale y\nplot "
-      << dat("estimate.dat") << " using 1:2 with lines title 'error angle'\nunset logscale y\n"
-      << "set title 'Small-angle error per body axis'\nset ylabel 'error [deg]'\nplot " << dat("estimate.dat")
-      << " using 1:3 with lines title 'about x', '' using 1:4 with lines title 'about y', '' using 1:5 with lines title 'about z'\n"
-      << "unset multiplot\n";
+    const bool bounds = d.estimate_covariance;
+    s << "set multiplot layout " << (bounds ? 4 : 2)
+      << ",1 title 'Attitude estimation error (estimate vs truth)" << (bounds ? " with the filter 3σ bounds" : "")
+      << "'\nset title 'Rotation angle between estimated and true attitude'\nset ylabel 'error angle [deg]'\nset logscale y\nplot "
+      << dat("estimate.dat") << " using 1:2 with lines title 'error angle'\nunset logscale y\n";
+    if (bounds) {
+      // One panel per axis: the error against ±3σ of the filter's covariance.
+      for (int axis_index = 0; axis_index < 3; ++axis_index) {
+        const char name = static_cast<char>('x' + axis_index);
+        const int error = 3 + axis_index, sigma = 9 + axis_index;
+        // The initial uncertainty (TRIAD's sigma) would flatten the rest: the
+        // range covers 95 % of the samples of |error| and 3σ.
+        std::vector<double> magnitudes;
+        for (const auto& r : d.estimate) {
+          magnitudes.push_back(std::abs(r.error_B_deg[axis_index]));
+          if (r.sigma3_B_deg) magnitudes.push_back((*r.sigma3_B_deg)[axis_index]);
+        }
+        const auto p95 = magnitudes.begin() + static_cast<std::ptrdiff_t>(0.95 * (magnitudes.size() - 1));
+        std::nth_element(magnitudes.begin(), p95, magnitudes.end());
+        const double range = std::max(*p95 * 1.3, 1e-6);
+        s << "set title 'Small-angle error about body " << name
+          << " (range: 95 % of the samples)'\nset yrange [" << -range << ":" << range
+          << "]\nset ylabel 'error " << name << " [deg]'\nplot " << dat("estimate.dat") << " using 1:" << error
+          << " with lines lc rgb '#1f77b4' title 'error', '' using 1:" << sigma
+          << " with lines dt 2 lc rgb '#d62728' title '+3σ (covariance)', '' using 1:(-$" << sigma
+          << ") with lines dt 2 lc rgb '#d62728' title '−3σ'\n";
+      }
+    } else {
+      s << "set title 'Small-angle error per body axis (this estimator publishes no covariance)'\n"
+        << "set ylabel 'error [deg]'\nplot " << dat("estimate.dat")
+        << " using 1:3 with lines title 'about x', '' using 1:4 with lines title 'about y', '' using 1:5 with lines title 'about z'\n";
+    }
+    s << "unset multiplot\n";
+  }
+
+  if (!d.thruster.empty()) {
+    bool pulses = false;
+    for (const auto& r : d.thruster) pulses |= r.pulse != 0;
+    begin("thrusters.png", "Thruster firings (thruster sequencer)");
+    s << "set multiplot layout " << (pulses ? 3 : 2) << ",1 title 'Thruster firings (thruster sequencer)'\n"
+      << "set title 'Which thruster fired (one mark per firing step)'\nset ylabel 'thruster [-]'\n"
+      << "set yrange [0.5:" << d.thruster_count + 0.5 << "]\nset ytics 1\nplot ";
+    for (std::size_t i = 0; i < d.thruster_count; ++i) {
+      s << (i ? ", '' " : dat("thruster.dat")) << " using 1:($" << 5 + i << " > 0 ? " << i + 1
+        << " : NaN) with points pt 5 ps 0.5 title 'thruster " << i + 1 << "'";
+    }
+    s << "\nset autoscale y\nset ytics autofreq\n"
+      << "set title 'On-time per firing step, summed over the thrusters'\nset ylabel 'on-time [s]'\nplot "
+      << dat("thruster.dat") << " using 1:2 with impulses lw 2 lc rgb '#2ca02c' title 'on-time'\n";
+    if (pulses) {
+      s << "set title 'Pulses about the controlled axis: +1 / −1'\nset ylabel 'pulse [-]'\nset yrange [-1.3:1.3]\nplot "
+        << dat("thruster.dat") << " using 1:3 with impulses lw 2 lc rgb '#1f77b4' title 'correction or braking', "
+        << "'' using 1:4 with impulses lw 2 lc rgb '#d62728' title 'braking'\n";
+    }
+    s << "unset multiplot\n";
   }
 
   if (d.track != PlotData::Track::kNone && !d.truth.empty()) {
@@ -278,12 +345,25 @@ int plot(const PlotOptions& o) {
       std::cerr << "error: gnuplot did not write " << (out / png).string() << "\n";
       return 1;
     }
-    std::cout << (out / png).string() << "\n";
+    if (o.list) std::cout << (out / png).string() << "\n";
   }
   return 0;
 }
 
 }  // namespace
+
+int plotRecording(const std::string& recording, const std::string& out_dir, bool list) {
+  PlotOptions o;
+  o.recording = recording;
+  o.out = out_dir;
+  o.list = list;
+  try {
+    return plot(o);
+  } catch (const std::exception& e) {
+    std::cerr << "error: " << e.what() << "\n";
+    return 1;
+  }
+}
 
 CLI::App* addPlotCommand(CLI::App& app, int& exit_code) {
   auto options = std::make_shared<PlotOptions>();
@@ -296,9 +376,11 @@ CLI::App* addPlotCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--max-points", options->max_points, "points per curve at most (default 20000)")
       ->check(CLI::Range(100, 10000000));
   cmd->footer(
-      "Writes pointing_error, body_rates, wheels, dipole, field, estimator_error and\n"
-      "ground_track .png; the data and the gnuplot script stay in <out>/gnuplot\n"
-      "(rerun: gnuplot <out>/gnuplot/plots.gp). Needs gnuplot (Debian: gnuplot-nox).");
+      "Writes pointing_error, body_rates, wheels, dipole, field, estimator_error (with\n"
+      "the filter's 3σ when the estimate carries its covariance), thrusters and\n"
+      "ground_track .png (dipole and thrusters when recorded); the data and the\n"
+      "gnuplot script stay in <out>/gnuplot (rerun: gnuplot <out>/gnuplot/plots.gp).\n"
+      "Needs gnuplot (Debian: gnuplot-nox).");
   cmd->callback([options, &exit_code] {
     try {
       exit_code = plot(*options);

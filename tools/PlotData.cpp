@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "tools/PlotData.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -131,10 +132,28 @@ PlotData readPlotData(const std::string& recording_path, const PlotContext& cont
         r.error_deg = 2.0 * std::atan2(q_err.vec().norm(), q_err.w()) * kRadToDeg;
         r.error_B_deg = 2.0 * q_err.vec() * kRadToDeg;
         r.b_B_uT = (q_est.conjugate() * truth->second.b_N_T) * kTeslaToMicro;
+        if (s.has_covariance()) {
+          // Diagonal of the row-major 3x3 attitude-error covariance [rad^2].
+          const auto& P = s.attitude_cov_body_rad2();
+          r.sigma3_B_deg = Eigen::Vector3d(std::sqrt(std::max(P[0], 0.0)), std::sqrt(std::max(P[4], 0.0)),
+                                           std::sqrt(std::max(P[8], 0.0))) *
+                           3.0 * kRadToDeg;
+          d.estimate_covariance = true;
+        }
         d.estimate.push_back(r);
       });
   forEachSample<bus::topics::kDipoleCmd>(recording, [&](std::uint64_t, const msg::DipoleCmd& s) {
     d.dipole.push_back({seconds(s.header().sim_time_ns()), bus::vec3(s.m_body_Am2()), s.active()});
+  });
+  forEachSample<bus::topics::kThrusterCmd>(recording, [&](std::uint64_t, const msg::ThrusterCmd& s) {
+    ThrusterRow r{seconds(s.header().sim_time_ns()), {}, 0.0, s.pulse(), s.braking(),
+                  static_cast<int>(s.phase())};
+    d.thruster_count = std::min<std::size_t>(s.thruster_count(), r.on_time_s.size());
+    for (std::size_t i = 0; i < d.thruster_count; ++i) {
+      r.on_time_s[i] = s.on_time_s()[i];
+      r.total_on_time_s += r.on_time_s[i];
+    }
+    if (r.total_on_time_s > 0 || r.pulse != 0) d.thruster.push_back(r);
   });
   return d;
 }

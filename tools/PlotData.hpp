@@ -50,6 +50,19 @@ struct EstimateRow {
   double error_deg;             ///< [deg] rotation angle from truth to estimate
   Eigen::Vector3d error_B_deg;  ///< [deg] small-angle error per body axis
   Eigen::Vector3d b_B_uT;       ///< [µT] true inertial field seen through the estimated attitude
+  /// [deg] 3σ of the attitude error per body axis, from the filter's
+  /// covariance (has_covariance); unset for a method that publishes none.
+  std::optional<Eigen::Vector3d> sigma3_B_deg;
+};
+
+/// A step at which some thruster fired.
+struct ThrusterRow {
+  double t_s;
+  std::array<double, 12> on_time_s;  ///< [s] per thruster (ThrusterCmd.on_time_s)
+  double total_on_time_s;  ///< [s] summed over the thrusters
+  int pulse;         ///< [-] +1 / -1 about the controlled axis, 0 none
+  bool braking;      ///< [-] a braking pulse (else a correction)
+  int phase;         ///< [-] 0 acquiring, 1 correcting, 2 coasting, 3 braking, 4 holding
 };
 
 struct DipoleRow {
@@ -69,6 +82,9 @@ struct PlotData {
   std::vector<MagnetometerRow> magnetometer;
   std::vector<EstimateRow> estimate;
   std::vector<DipoleRow> dipole;
+  std::vector<ThrusterRow> thruster;  ///< firing steps only: pulses are sparse
+  std::size_t thruster_count = 0;
+  bool estimate_covariance = false;  ///< some estimate carries its covariance
 };
 
 PlotData readPlotData(const std::string& recording_path, const PlotContext& context);

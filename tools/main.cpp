@@ -18,6 +18,7 @@
 #include "bus/Shutdown.hpp"
 #include "components/Registry.hpp"
 #include "tools/FieldCommand.hpp"
+#include "tools/CmdCommand.hpp"
 #include "tools/EchoCommand.hpp"
 #include "tools/ExportCommand.hpp"
 #include "tools/HealthCommand.hpp"
@@ -26,6 +27,8 @@
 #include "tools/OrbitCommand.hpp"
 #include "tools/PhysicsBench.hpp"
 #include "tools/PlotCommand.hpp"
+#include "tools/RecordCommand.hpp"
+#include "tools/ReplayCommand.hpp"
 #include "tools/RunDirectory.hpp"
 #include "tools/ShmClean.hpp"
 #include "tools/StudyCommand.hpp"
@@ -65,6 +68,7 @@ struct RunOptions {
   std::vector<std::string> prefixes;  // --prefix COMPONENT=COMMAND
   bool quiet = false;
   bool json = false;
+  bool plots = true;  // the review figures into <run>/plots (flatsat plot)
 };
 
 /// `--prefix COMPONENT=COMMAND` into component -> argv words. `*` stands
@@ -146,6 +150,16 @@ int run(const RunOptions& o, nlohmann::ordered_json* summary_out = nullptr) {
     std::cout << "summary (" << (fs::path(run_dir) / "summary.json").string() << "):\n"
               << tools::summaryTable(summary);
   }
+  if (o.plots) {
+    // A run that worked stays a success when only its figures fail (no gnuplot).
+    const fs::path plots = fs::path(run_dir) / "plots";
+    if (tools::plotRecording((fs::path(run_dir) / "recording.sqlite").string(), plots.string(),
+                             false) != 0) {
+      std::cerr << "flatsat: warning: the figures were not drawn; the run itself succeeded\n";
+    } else if (!o.quiet && !o.json) {
+      std::cout << "figures: " << plots.string() << "\n";
+    }
+  }
   if (summary_out != nullptr) *summary_out = summary;
   return 0;
 }
@@ -167,6 +181,7 @@ int bench(const std::string& scenario, double duration_s) {
   o.out = out;
   o.overrides = {"duration_s=" + std::to_string(duration_s), "duration_orbits=null"};
   o.quiet = true;
+  o.plots = false;
   o.log_level = "warn";
   nlohmann::ordered_json summary;
   const int rc = run(o, &summary);
@@ -199,6 +214,8 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--log", run_options.log_level, "components' log level");
   run_cmd->add_flag("-q,--quiet", run_options.quiet, "no progress, no table");
   run_cmd->add_flag("--json", run_options.json, "print the summary as JSON");
+  run_cmd->add_flag("!--no-plots", run_options.plots,
+                    "skip the review figures (default: flatsat plot into <run>/plots)");
   run_cmd->add_option("--seed", run_options.seed, "scenario seed: dispersed initial conditions and noise");
   run_cmd->add_option("--prefix", run_options.prefixes,
                       "COMPONENT=COMMAND: start that component under COMMAND (split at spaces), "
@@ -224,7 +241,9 @@ int main(int argc, char** argv) {
   const std::vector<CLI::App*> tool_cmds = {
       tools::addTopicsCommand(app, tool_exit), tools::addEchoCommand(app, tool_exit),
       tools::addHzCommand(app, tool_exit),     tools::addHealthCommand(app, tool_exit),
-      tools::addExportCommand(app, tool_exit), tools::addPlotCommand(app, tool_exit)};
+      tools::addExportCommand(app, tool_exit), tools::addPlotCommand(app, tool_exit),
+      tools::addRecordCommand(app, tool_exit), tools::addReplayCommand(app, tool_exit),
+      tools::addCmdCommand(app, tool_exit)};
 
   auto* clean_cmd = app.add_subcommand(
       "clean-shm", "remove Fast DDS shared-memory files no live process uses");

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "components/attitude_controller/AttitudeControllerNode.hpp"
 
+#include <spdlog/spdlog.h>
+
 #include "bus/Convert.hpp"
 #include "sim/DynamicsServerParams.hpp"
 
@@ -33,7 +35,49 @@ AttitudeControllerNode::AttitudeControllerNode(bus::Bus& bus, bus::NodeOptions o
                                                const SunPointingControllerParams& params)
     : Component(bus, std::move(options)), controller_(params) {}
 
+void AttitudeControllerNode::receive(const msg::ParamCmd& command) {
+  if (bus::text(command.target()) != name()) return;
+  std::lock_guard lock(commands_mutex_);
+  pending_.push_back(command);
+}
+
+void AttitudeControllerNode::takeCommands() {
+  std::vector<msg::ParamCmd> pending;
+  {
+    std::lock_guard lock(commands_mutex_);
+    pending.swap(pending_);
+  }
+  for (const auto& command : pending) {
+    // The keys of the scenario's components.<name> section that the law
+    // takes as plain numbers; the wheel geometry and the axis stay fixed.
+    const std::string key = bus::text(command.key());
+    SunPointingControllerParams p = controller_.params();
+    double* field = key == "kp_Nm_per_rad"     ? &p.kp_Nm_per_rad
+                    : key == "kd_Nm_s_per_rad" ? &p.kd_Nm_s_per_rad
+                    : key == "max_torque_Nm"   ? &p.max_torque_Nm
+                    : key == "max_rate_rad_s"  ? &p.max_rate_rad_s
+                                               : nullptr;
+    if (field == nullptr) {
+      acks_.queue(command.command_id(), "param", false,
+                  key + ": not settable; kp_Nm_per_rad, kd_Nm_s_per_rad, max_torque_Nm, "
+                        "max_rate_rad_s are");
+      continue;
+    }
+    *field = command.value();
+    if (const auto problems = p.validate(); !problems.empty()) {
+      acks_.queue(command.command_id(), "param", false, problems.front());
+      continue;
+    }
+    controller_ = SunPointingController(p);
+    spdlog::info("{}: {} set to {} by {}", name(), key, command.value(),
+                 bus::text(command.header().source()));
+    acks_.queue(command.command_id(), "param", true, fmt::format("{} = {}", key, command.value()));
+  }
+}
+
 void AttitudeControllerNode::step(const bus::StepContext& ctx) {
+  takeCommands();
+  acks_.publish(ctx, name());
   const auto tach = tach_.at(ctx.step);
   const auto& used = last_tach_.update(tach);
   auto message = toMessage(

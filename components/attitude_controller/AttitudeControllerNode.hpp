@@ -1,5 +1,9 @@
 // SPDX-License-Identifier: Apache-2.0
 #pragma once
+#include <mutex>
+#include <vector>
+
+#include "bus/CommandAcks.hpp"
 #include "bus/Component.hpp"
 #include "bus/NodeMain.hpp"
 #include "components/common/LastValid.hpp"
@@ -8,7 +12,8 @@
 namespace flatsat::attitude_controller {
 
 /// Wheel-based Sun pointing: attitude estimate and wheel speeds in, wheel
-/// motor torques out.
+/// motor torques out. Its gains and limits can be changed while it runs
+/// (flatsat/param_cmd, `flatsat cmd param`), each change acknowledged.
 class AttitudeControllerNode final : public bus::Component {
  public:
   AttitudeControllerNode(bus::Bus& bus, bus::NodeOptions options,
@@ -16,6 +21,9 @@ class AttitudeControllerNode final : public bus::Component {
 
  private:
   void step(const bus::StepContext& ctx) override;
+  void receive(const msg::ParamCmd& command);
+  /// Applies the parameter changes received since the last step.
+  void takeCommands();
 
   bus::InputOf<bus::topics::kAttitudeEstimate>& estimate_ =
       addInput(bus::topics::kAttitudeEstimate);
@@ -24,6 +32,11 @@ class AttitudeControllerNode final : public bus::Component {
   bus::WriterOf<bus::topics::kWheelTorqueCmd>& command_ =
       addOutput(bus::topics::kWheelTorqueCmd);
   SunPointingController controller_;
+  std::mutex commands_mutex_;
+  std::vector<msg::ParamCmd> pending_;  // received, applied at the next step
+  bus::CommandAcks acks_{bus_};
+  bus::ReaderOf<bus::topics::kParamCmd> commands_{
+      bus_, bus::topics::kParamCmd, [this](const msg::ParamCmd& c) { receive(c); }};
 };
 
 /// components.<name>, with the wheel geometry from spacecraft.wheels.

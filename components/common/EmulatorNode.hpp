@@ -10,6 +10,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "bus/CommandAcks.hpp"
 #include "bus/Component.hpp"
 #include "components/common/FaultParams.hpp"
 
@@ -42,6 +43,7 @@ class EmulatorNode final : public bus::Component {
  private:
   void step(const bus::StepContext& ctx) override {
     takeCommands();
+    acks_.publish(ctx, name());
     Output out = model_.step(toInput(truth_.at(ctx.step)), ctx.sim_time_ns);
     const auto result = faults_.apply(out.*measured, ctx.sim_time_ns);
     publishFaultEvents(result.active, ctx);
@@ -58,18 +60,29 @@ class EmulatorNode final : public bus::Component {
     if (!problems.empty()) {
       spdlog::warn("{}: fault command from {} refused: {}", name(),
                    bus::text(command.header().source()), problems.front());
+      acks_.queue(command.command_id(), "fault", false, problems.front());
       return;
     }
     std::lock_guard lock(commands_mutex_);
-    pending_.push_back(fault);
+    pending_.push_back({fault, command.command_id()});
   }
 
   void takeCommands() {
-    std::lock_guard lock(commands_mutex_);
-    for (const auto& fault : pending_) {
-      if (!faults_.add(fault)) spdlog::warn("{}: fault table full, command dropped", name());
+    std::vector<std::pair<SensorFault, std::uint64_t>> pending;
+    {
+      std::lock_guard lock(commands_mutex_);
+      pending.swap(pending_);
     }
-    pending_.clear();
+    for (const auto& [fault, id] : pending) {
+      if (!faults_.add(fault)) {
+        spdlog::warn("{}: fault table full, command dropped", name());
+        acks_.queue(id, "fault", false, "fault table full");
+      } else {
+        acks_.queue(id, "fault", true,
+                    std::string(toString(fault.kind)) + " on channel " +
+                        std::to_string(fault.channel) + " added");
+      }
+    }
   }
 
   void publishFaultEvents(std::uint32_t active, const bus::StepContext& ctx) {
@@ -92,7 +105,9 @@ class EmulatorNode final : public bus::Component {
   bus::WriterOf<OutputTopic>& output_ = addOutput(OutputTopic);
   bus::WriterOf<bus::topics::kFaultEvent>& events_ = addOutput(bus::topics::kFaultEvent);
   std::mutex commands_mutex_;
-  std::vector<SensorFault> pending_;  // commands received, applied at the next step
+  // commands received (with their ids), applied at the next step
+  std::vector<std::pair<SensorFault, std::uint64_t>> pending_;
+  bus::CommandAcks acks_{bus_};
   bus::ReaderOf<bus::topics::kFaultCmd> commands_;
   Model model_;
   SensorFaults<kChannels> faults_;

@@ -1,8 +1,10 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "components/recorder/RecorderNode.hpp"
 
+#include <cmath>
 #include <filesystem>
 
+#include "bus/RecordingMeta.hpp"
 #include "bus/Serialization.hpp"
 
 namespace flatsat::recorder {
@@ -30,6 +32,11 @@ RecorderNode::RecorderNode(bus::Bus& bus, bus::NodeOptions options, const Record
   health_ = recordAsItComes(bus, bus::topics::kHealth);
   fault_commands_ = recordAsItComes(bus, bus::topics::kFaultCmd);
   fault_events_ = recordAsItComes(bus, bus::topics::kFaultEvent);
+  mode_commands_ = recordAsItComes(bus, bus::topics::kUnloadingModeCmd);
+  param_commands_ = recordAsItComes(bus, bus::topics::kParamCmd);
+  acks_ = recordAsItComes(bus, bus::topics::kCommandAck);
+  grants_ = recordAsItComes(bus, bus::topics::kStepGrant);
+  for (const auto& [key, value] : params.meta) recording_.setMeta(key, value);
 }
 
 template <class Def>
@@ -73,6 +80,10 @@ RecorderParams readParams(const bus::Scenario& scenario, const bus::NodeArgs& ar
   r.problems(p.validate());
   if (scenario.schedule().at(args.name) != 1) r.problem("rate_divider", "the recorder must run every step (1)");
   r.finish();
+  p.meta = {{bus::meta::kScenario, scenario.name},
+            {bus::meta::kSchedule, bus::meta::formatSchedule(scenario.schedule())},
+            {bus::meta::kMode, scenario.pacing == bus::Pacing::kPaced ? "paced" : "lockstep"},
+            {bus::meta::kLeaseMs, std::to_string(std::llround(scenario.liveliness_lease_s * 1e3))}};
   return p;
 }
 

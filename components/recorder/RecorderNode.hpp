@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #pragma once
 #include <functional>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -14,13 +15,16 @@ namespace flatsat::recorder {
 struct RecorderParams {
   std::string path;                   // recording file (SQLite), created
   std::uint32_t commit_every_steps = 50;  // [-] steps per transaction, 1..100000
+  std::map<std::string, std::string> meta;  // about the rig (bus/RecordingMeta.hpp)
   std::vector<std::string> validate() const;
 };
 
 /// Records every stepped topic of the rig as samples arrive. In lockstep it
 /// is gated like any component: it reports StepDone(k) only once every
 /// sample due at k is stored, so the recording is complete by construction.
-/// Health is recorded too.
+/// Health, faults, operator commands with their acknowledgements and the step grants are recorded too,
+/// and the rig's schedule and timing go to the meta table: enough for
+/// `flatsat replay` to stand in for the rest of the rig around one component.
 class RecorderNode final : public bus::Component {
  public:
   RecorderNode(bus::Bus& bus, bus::NodeOptions options, const RecorderParams& params);
@@ -41,6 +45,10 @@ class RecorderNode final : public bus::Component {
   std::unique_ptr<bus::ReaderOf<bus::topics::kHealth>> health_;
   std::unique_ptr<bus::ReaderOf<bus::topics::kFaultCmd>> fault_commands_;
   std::unique_ptr<bus::ReaderOf<bus::topics::kFaultEvent>> fault_events_;
+  std::unique_ptr<bus::ReaderOf<bus::topics::kUnloadingModeCmd>> mode_commands_;
+  std::unique_ptr<bus::ReaderOf<bus::topics::kParamCmd>> param_commands_;
+  std::unique_ptr<bus::ReaderOf<bus::topics::kCommandAck>> acks_;
+  std::unique_ptr<bus::ReaderOf<bus::topics::kStepGrant>> grants_;
 };
 
 /// components.<name>; the file goes to the run directory (--out).

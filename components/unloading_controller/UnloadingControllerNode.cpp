@@ -92,21 +92,33 @@ void UnloadingControllerNode::receive(const msg::ModeCmd& command) {
   const int mode = static_cast<int>(command.mode());
   if (mode < 0 || mode > static_cast<int>(MagneticMode::kSpinCapture)) {
     spdlog::warn("{}: mode command {} from {} refused", name(), mode, bus::text(command.header().source()));
+    acks_.queue(command.command_id(), "mode", false,
+                "mode " + std::to_string(mode) + " is not unload, detumble or spin_capture");
     return;
   }
   std::lock_guard lock(mode_mutex_);
   requested_mode_ = static_cast<MagneticMode>(mode);
+  mode_command_ids_.push_back(command.command_id());
 }
 
 void UnloadingControllerNode::step(const bus::StepContext& ctx) {
   {
     std::lock_guard lock(mode_mutex_);
     if (requested_mode_) {
-      spdlog::info("{}: mode {} commanded", name(), unloading_controller::name(*requested_mode_));
+      const std::string mode = unloading_controller::name(*requested_mode_);
+      spdlog::info("{}: mode {} commanded", name(), mode);
       modes_.command(*requested_mode_);
       requested_mode_.reset();
+      // Several commands between two steps: the last one is entered.
+      for (std::size_t i = 0; i < mode_command_ids_.size(); ++i) {
+        const bool last = i + 1 == mode_command_ids_.size();
+        acks_.queue(mode_command_ids_[i], "mode", last,
+                    last ? "entered " + mode : "superseded by a later mode command");
+      }
+      mode_command_ids_.clear();
     }
   }
+  acks_.publish(ctx, name());
   const auto reading = tach_.at(ctx.step);
   const auto& tach = last_tach_.update(reading);
   MagneticModesInput in{bus::vec4(tach.wheel_speed_rad_s()), {}, false};

@@ -2,7 +2,9 @@
 #pragma once
 #include <mutex>
 #include <optional>
+#include <vector>
 
+#include "bus/CommandAcks.hpp"
 #include "bus/Component.hpp"
 #include "bus/NodeMain.hpp"
 #include "components/common/LastValid.hpp"
@@ -45,6 +47,8 @@ class UnloadingControllerNode final : public bus::Component {
   bus::WriterOf<bus::topics::kCoilWindow>& coil_window_ = addOutput(bus::topics::kCoilWindow);
   std::mutex mode_mutex_;
   std::optional<MagneticMode> requested_mode_;  // received, entered at the next step
+  std::vector<std::uint64_t> mode_command_ids_;  // of the commands behind requested_mode_
+  bus::CommandAcks acks_{bus_};
   bus::ReaderOf<bus::topics::kUnloadingModeCmd> mode_commands_;
   MagneticModes modes_;
   CoilArbiter arbiter_;

@@ -37,7 +37,7 @@ inline RigRun runScenario(const std::string& scenario, const std::string& out,
                           const std::string& extra = "") {
   exportTestDomain();
   RigRun run;
-  run.command = runCommand(kFlatsat + " run " + scenario + " -q --out " + out + " " + extra);
+  run.command = runCommand(kFlatsat + " run " + scenario + " -q --no-plots --out " + out + " " + extra);
   INFO(run.command.output);
   REQUIRE(run.command.exit_code == 0);
   std::ifstream(std::filesystem::path(out) / "summary.json") >> run.summary;

@@ -29,7 +29,7 @@ MekfRun runMekf(const std::string& tag, const std::string& extra) {
   test::exportTestDomain();
   const fs::path out = fs::temp_directory_path() / ("flatsat-test-" + tag + "-" + std::to_string(::getpid()));
   fs::remove_all(out);
-  const auto run = test::runCommand(kFlatsat + " run " + kMekf + " -q --out " + out.string() + " " + extra);
+  const auto run = test::runCommand(kFlatsat + " run " + kMekf + " -q --no-plots --out " + out.string() + " " + extra);
   INFO(run.output);
   REQUIRE(run.exit_code == 0);
   MekfRun result;

@@ -26,7 +26,7 @@ nlohmann::json runExample(const std::string& tag, const std::string& extra) {
   test::exportTestDomain();
   const fs::path out = fs::temp_directory_path() / ("flatsat-test-s1-" + tag + "-" + std::to_string(::getpid()));
   fs::remove_all(out);
-  const auto command = test::runCommand(kFlatsat + " run " + kExample + " -q --out " + out.string() + " " + extra);
+  const auto command = test::runCommand(kFlatsat + " run " + kExample + " -q --no-plots --out " + out.string() + " " + extra);
   INFO(command.output);
   REQUIRE(command.exit_code == 0);
   nlohmann::json summary;

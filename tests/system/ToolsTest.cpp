@@ -92,7 +92,7 @@ class BackgroundRig {
 std::string finishedRun(const std::string& tag) {
   test::exportTestDomain();
   const std::string dir = freshDir(tag);
-  const auto run = test::runCommand(kFlatsat + " run " + kDefault + " -q --out " + dir +
+  const auto run = test::runCommand(kFlatsat + " run " + kDefault + " -q --no-plots --out " + dir +
                                     " --set duration_orbits=null --set duration_s=60");
   INFO(run.output);
   REQUIRE(run.exit_code == 0);
@@ -126,7 +126,8 @@ test::CommandResult tool(const std::string& args) {
 }  // namespace
 
 TEST_CASE("every tool subcommand explains itself with --help", "[system][tools]") {
-  for (const std::string command : {"topics", "echo", "hz", "health", "export", "plot"}) {
+  for (const std::string command :
+       {"topics", "echo", "hz", "health", "export", "plot", "record", "replay", "cmd"}) {
     CAPTURE(command);
     const auto help = test::runCommand(kFlatsat + " " + command + " --help");
     INFO(help.output);

@@ -1,0 +1,175 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "tools/CmdCommand.hpp"
+
+#include <cmath>
+#include <condition_variable>
+#include <cstdio>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <optional>
+#include <random>
+
+#include "bus/Endpoints.hpp"
+#include "bus/Stamp.hpp"
+#include "tools/ToolBus.hpp"
+
+namespace flatsat::tools {
+
+namespace {
+
+constexpr const char* kSender = "flatsat-cmd";  // header.source of every command
+
+struct CmdOptions {
+  std::string mode;
+  std::string target, kind, key;
+  int channel = -1;
+  double magnitude = 0.0, start_s = 0.0, duration_s = 0.0, value = 0.0;
+  double timeout_s = 15.0;
+  int domain = -1;
+};
+
+const std::map<std::string, msg::MagneticMode> kModes = {
+    {"unload", msg::MAGNETIC_UNLOAD},
+    {"detumble", msg::MAGNETIC_DETUMBLE},
+    {"spin_capture", msg::MAGNETIC_SPIN_CAPTURE}};
+
+/// Writes `command` on `def`'s topic (kept for late joiners while the tool
+/// waits: transient-local) and waits for the acknowledgement carrying its id.
+template <class Def>
+int send(const Def& def, typename Def::Type command, const std::string& what, const CmdOptions& o) {
+  ToolBus tool_bus("cmd", o.domain);
+  const std::uint64_t id = std::random_device{}() * 0x100000000ULL + std::random_device{}();
+  command.command_id(id);
+  bus::setText(command.header().source(), kSender);
+  std::mutex mutex;
+  std::condition_variable arrived;
+  std::optional<msg::CommandAck> ack;
+  Tap<std::remove_cvref_t<decltype(bus::topics::kCommandAck)>> acks(
+      tool_bus, bus::topics::kCommandAck, [&](const msg::CommandAck& a, const Arrival&) {
+        if (a.command_id() != id) return;
+        {
+          std::lock_guard lock(mutex);
+          ack = a;
+        }
+        arrived.notify_all();
+      });
+  bus::Writer<Def> writer(tool_bus.bus(), def);
+  writer.write(command);
+  std::cerr << "flatsat cmd: " << what << " (command " << id << ") on " << def.name
+            << ", domain " << tool_bus.domain() << "\n";
+  const auto deadline = Clock::now() + std::chrono::duration<double>(o.timeout_s);
+  std::unique_lock lock(mutex);
+  while (!ack) {
+    if (Clock::now() > deadline) {
+      std::cerr << "error: no acknowledgement of command " << id << " (" << what << ") within "
+                << o.timeout_s << " s: is the component running on domain " << tool_bus.domain()
+                << "?\n";
+      return 1;
+    }
+    lock.unlock();
+    const bool go_on = sleepUnlessInterrupted(0.05);
+    lock.lock();
+    if (!go_on) return 1;
+  }
+  const double t_s = static_cast<double>(ack->header().sim_time_ns()) * 1e-9;
+  std::printf("%s: %s by %s at step %llu (t = %.1f s): %s\n", what.c_str(),
+              ack->accepted() ? "accepted" : "refused", bus::text(ack->header().source()).c_str(),
+              static_cast<unsigned long long>(ack->header().step()), t_s,
+              bus::text(ack->reason()).c_str());
+  return ack->accepted() ? 0 : 3;
+}
+
+template <class Run>
+void guarded(int& exit_code, Run&& run) {
+  try {
+    exit_code = run();
+  } catch (const std::exception& e) {
+    std::cerr << "error: " << e.what() << "\n";
+    exit_code = 1;
+  }
+}
+
+std::string shortNumber(double value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%g", value);
+  return buffer;
+}
+
+std::int64_t toNs(double seconds) { return std::llround(seconds * 1e9); }
+
+}  // namespace
+
+CLI::App* addCmdCommand(CLI::App& app, int& exit_code) {
+  auto o = std::make_shared<CmdOptions>();
+  auto* cmd = app.add_subcommand("cmd", "send a mode, fault or parameter command to a running rig");
+  cmd->require_subcommand(1);
+  cmd->footer(
+      "Each command carries a random id; the component that applies it answers on\n"
+      "flatsat/command_ack with that id, the step from which the change applies and\n"
+      "what it did (or why it refused). The rig's recorder records commands and\n"
+      "acknowledgements. Each subcommand takes --domain N and --timeout S.\n"
+      "Exit 0 accepted, 3 refused, 1 no acknowledgement in time.");
+  const auto common = [&](CLI::App* sub) {
+    sub->add_option("--timeout", o->timeout_s, "[s] wait this long for the acknowledgement (default 15)")
+        ->check(CLI::PositiveNumber);
+    addDomainOption(*sub, o->domain);
+  };
+
+  auto* mode = cmd->add_subcommand("mode", "magnetic mode of the unloading controller");
+  mode->add_option("mode", o->mode, "unload, detumble or spin_capture")
+      ->required()
+      ->check(CLI::IsMember({"unload", "detumble", "spin_capture"}));
+  common(mode);
+  mode->callback([o, &exit_code] {
+    guarded(exit_code, [&] {
+      msg::ModeCmd command;
+      command.mode(kModes.at(o->mode));
+      return send(bus::topics::kUnloadingModeCmd, command, "mode " + o->mode, *o);
+    });
+  });
+
+  auto* fault = cmd->add_subcommand("fault", "inject a sensor fault (architecture, \"Faults\")");
+  fault->add_option("target", o->target, "sensor component: magnetometer, sun_sensor, gyro, ...")
+      ->required();
+  fault->add_option("kind", o->kind, "stuck, bias, noise, spike, dropout or saturation")->required();
+  fault->add_option("--channel", o->channel, "measurement component (axis, wheel); -1 all (default)");
+  fault->add_option("--magnitude", o->magnitude,
+                    "bias, spike, noise 1 sigma or clip level, in the measurement's unit");
+  fault->add_option("--start-s", o->start_s, "[s] simulated time it begins (default 0: at once)")
+      ->check(CLI::NonNegativeNumber);
+  fault->add_option("--duration-s", o->duration_s, "[s] how long (default 0: for the rest of the run)")
+      ->check(CLI::NonNegativeNumber);
+  common(fault);
+  fault->callback([o, &exit_code] {
+    guarded(exit_code, [&] {
+      msg::FaultCmd command;
+      bus::setText(command.target(), o->target);
+      bus::setText(command.kind(), o->kind);
+      command.channel(o->channel);
+      command.magnitude(o->magnitude);
+      command.start_ns(toNs(o->start_s));
+      command.duration_ns(toNs(o->duration_s));
+      return send(bus::topics::kFaultCmd, command, "fault " + o->kind + " on " + o->target, *o);
+    });
+  });
+
+  auto* param = cmd->add_subcommand("param", "change a component's parameter while it runs");
+  param->add_option("target", o->target, "component: attitude_controller")->required();
+  param->add_option("key", o->key, "key as in the scenario: kp_Nm_per_rad, ...")->required();
+  param->add_option("value", o->value, "new value, in the unit the key names")->required();
+  common(param);
+  param->callback([o, &exit_code] {
+    guarded(exit_code, [&] {
+      msg::ParamCmd command;
+      bus::setText(command.target(), o->target);
+      bus::setText(command.key(), o->key);
+      command.value(o->value);
+      return send(bus::topics::kParamCmd, command,
+                  "param " + o->target + "." + o->key + " = " + shortNumber(o->value), *o);
+    });
+  });
+  return cmd;
+}
+
+}  // namespace flatsat::tools
