@@ -217,7 +217,9 @@ int replay(const ReplayOptions& o) {
 
   bus::BusOptions bus_options;
   bus_options.domain_id = resolveDomain(o.domain);
-  bus_options.profile = bus::profileFromEnvironment();
+  const auto network = bus::networkFromEnvironment();
+  bus_options.profile = network.profile;
+  bus_options.peers = network.peers;
   bus_options.participant_name = "flatsat-replay";
   // A component configured paced expects its producers' liveliness lease.
   bus_options.tuning.watch_liveliness = recording.meta(bus::meta::kMode) == "paced";

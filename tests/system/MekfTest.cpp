@@ -25,11 +25,11 @@ struct MekfRun {
   std::string health;  // the recorded Health samples, JSON lines
 };
 
-MekfRun runMekf(const std::string& tag, const std::string& extra) {
+MekfRun runMekf(const std::string& tag, const std::string& extra, const std::string& scenario = kMekf) {
   test::exportTestDomain();
   const fs::path out = fs::temp_directory_path() / ("flatsat-test-" + tag + "-" + std::to_string(::getpid()));
   fs::remove_all(out);
-  const auto run = test::runCommand(kFlatsat + " run " + kMekf + " -q --no-plots --out " + out.string() + " " + extra);
+  const auto run = test::runCommand(kFlatsat + " run " + scenario + " -q --no-plots --out " + out.string() + " " + extra);
   INFO(run.output);
   REQUIRE(run.exit_code == 0);
   MekfRun result;
@@ -75,4 +75,16 @@ TEST_CASE("MEKF rig rides through a magnetometer dropout and says so", "[system]
   CHECK(run.health.find("estimate INVALID") == std::string::npos);
   CHECK(run.summary["attitude_error_deg_3sigma"].get<double>() < 0.5);
   CHECK(run.summary["pointing_error_deg_max"].get<double>() < 0.5);
+}
+
+TEST_CASE("MEKF with a star tracker: attitude within 0.02 deg (3 sigma)", "[system][star_tracker]") {
+  // Half an orbit after a short settling: the star tracker gives the attitude from its first
+  // sample, so nothing needs the two orbits of the gyro-magnetometer-Sun rig.
+  const auto run = runMekf("mekf-star",
+                           "--set duration_orbits=null --set duration_s=3000 --set metrics.acquisition_s=300",
+                           std::string(FLATSAT_SCENARIO_DIR) + "/mekf_star_tracker.yaml");
+  INFO(run.summary.dump(2));
+  CHECK(run.summary["attitude_error_deg_3sigma"].get<double>() < 0.02);
+  CHECK(run.summary["nees_in_bounds_fraction"].get<double>() >= 0.9);
+  CHECK(run.health.find("star tracker ok") != std::string::npos);
 }
