@@ -89,13 +89,14 @@ UnloadingControllerNode::UnloadingControllerNode(bus::Bus& bus, bus::NodeOptions
 }
 
 void UnloadingControllerNode::receive(const msg::ModeCmd& command) {
-  const int mode = static_cast<int>(command.mode());
-  if (mode < 0 || mode > static_cast<int>(MagneticMode::kSpinCapture)) {
-    spdlog::warn("{}: mode command {} from {} refused", name(), mode, bus::text(command.header().source()));
+  const auto mode = commandedMode(command);
+  if (!mode) {
+    spdlog::warn("{}: mode command {} from {} refused", name(), static_cast<std::int64_t>(command.mode()),
+                 bus::text(command.header().source()));
     return;
   }
   std::lock_guard lock(mode_mutex_);
-  requested_mode_ = static_cast<MagneticMode>(mode);
+  requested_mode_ = mode;
 }
 
 void UnloadingControllerNode::step(const bus::StepContext& ctx) {
