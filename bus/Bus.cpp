@@ -14,6 +14,7 @@
 #include <fastdds/rtps/transport/UDPv4TransportDescriptor.h>
 #include <fastdds/rtps/transport/shared_mem/SharedMemTransportDescriptor.h>
 #include <fastrtps/utils/IPLocator.h>
+#include <spdlog/spdlog.h>
 
 namespace flatsat::bus {
 
@@ -187,10 +188,20 @@ Bus::~Bus() {
   dds::DomainParticipantFactory::get_instance()->delete_participant(participant_);
 }
 
+void Bus::countDroppedSample(const char* type_name) {
+  const std::uint64_t n = ++samples_dropped_;
+  std::uint64_t decade = 1;  // a flood of bad samples does not flood the log
+  while (decade <= n / 10) decade *= 10;
+  if (n == decade) {
+    spdlog::warn("{}: dropped a sample that does not decode as {} ({} so far)",
+                 options_.participant_name, type_name, n);
+  }
+}
+
 dds::Topic& Bus::topic(const std::string& name, dds::TopicDataType* type) {
+  dds::TypeSupport support(type);  // owns `type` from here, also when the topic exists
   std::lock_guard lock(mutex_);
   if (auto it = topics_.find(name); it != topics_.end()) return *it->second;
-  dds::TypeSupport support(type);
   support.register_type(participant_);
   dds::Topic* topic = participant_->create_topic(name, support.get_type_name(),
                                                  dds::TOPIC_QOS_DEFAULT);

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 #pragma once
+#include <atomic>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -61,7 +63,16 @@ class Bus {
   std::uint32_t domainId() const { return options_.domain_id; }
   const QosTuning& tuning() const { return options_.tuning; }
 
-  /// The topic of that name, registering its type on first use.
+  /// Samples received on any reader of this participant that did not decode.
+  std::uint64_t samplesDropped() const { return samples_dropped_.load(); }
+  /// Counts a dropped sample of that type; logs the 1st, 10th, 100th, ...
+  void countDroppedSample(const char* type_name);
+  /// What this bus's topic types (GuardedType) call for each sample that does not decode.
+  std::function<void(const char*)> dropCounter() {
+    return [this](const char* type_name) { countDroppedSample(type_name); };
+  }
+
+  /// The topic of that name, registering its type on first use (takes `type`).
   eprosima::fastdds::dds::Topic& topic(const std::string& name,
                                        eprosima::fastdds::dds::TopicDataType* type);
 
@@ -72,6 +83,7 @@ class Bus {
   eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;
   std::mutex mutex_;
   std::map<std::string, eprosima::fastdds::dds::Topic*> topics_;
+  std::atomic<std::uint64_t> samples_dropped_{0};
 };
 
 }  // namespace flatsat::bus

@@ -5,10 +5,6 @@
 
 namespace flatsat::bus {
 
-namespace {
-constexpr auto kHealthPeriod = std::chrono::seconds(1);  // wall-clock heartbeat
-}
-
 Component::Component(Bus& bus, NodeOptions options)
     : Node(bus, std::move(options)),
       grant_reader_(bus, topics::kStepGrant,

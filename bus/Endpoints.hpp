@@ -11,6 +11,7 @@
 #include <fastdds/dds/subscriber/SampleInfo.hpp>
 
 #include "bus/Bus.hpp"
+#include "bus/GuardedType.hpp"
 #include "bus/Qos.hpp"
 
 namespace flatsat::bus {
@@ -22,7 +23,8 @@ class Writer {
   using Sample = typename Def::Type;
 
   Writer(Bus& bus, const Def& def) : name_(def.name), publisher_(bus.publisher()) {
-    auto& topic = bus.topic(std::string(def.name), new typename Def::PubSubType());
+    auto& topic = bus.topic(std::string(def.name),
+                            new GuardedType<typename Def::PubSubType>(bus.dropCounter()));
     writer_ = publisher_.create_datawriter(&topic, writerQos(def.qos, bus.tuning()));
     if (writer_ == nullptr) throw std::runtime_error("could not create a writer on " + name_);
   }
@@ -57,7 +59,8 @@ class Writer {
 };
 
 /// Typed reader for one registry topic; every valid sample is handed to a
-/// callback on a Fast DDS thread.
+/// callback on a Fast DDS thread. A sample that does not decode is dropped
+/// and counted in the bus (GuardedType).
 template <class Def>
 class Reader : private eprosima::fastdds::dds::DataReaderListener {
  public:
@@ -66,7 +69,8 @@ class Reader : private eprosima::fastdds::dds::DataReaderListener {
 
   Reader(Bus& bus, const Def& def, Callback on_sample)
       : name_(def.name), on_sample_(std::move(on_sample)), subscriber_(bus.subscriber()) {
-    auto& topic = bus.topic(std::string(def.name), new typename Def::PubSubType());
+    auto& topic = bus.topic(std::string(def.name),
+                            new GuardedType<typename Def::PubSubType>(bus.dropCounter()));
     reader_ = subscriber_.create_datareader(&topic, readerQos(def.qos, bus.tuning()), this);
     if (reader_ == nullptr) throw std::runtime_error("could not create a reader on " + name_);
   }

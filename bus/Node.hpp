@@ -30,6 +30,9 @@ enum class Pacing {
   kPaced,     ///< steps follow the wall clock; nobody is waited for
 };
 
+/// Wall-clock period of the RUNNING health heartbeat.
+inline constexpr auto kHealthPeriod = std::chrono::seconds(1);
+
 /// What every node needs to know about its place in the rig.
 struct NodeOptions {
   std::string name;                 ///< component name, unique in the rig

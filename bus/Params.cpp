@@ -135,6 +135,10 @@ std::vector<ParamReader> ParamReader::list(const std::string& key) {
 void ParamReader::finish() {
   if (!node_.IsMap()) return;
   for (const auto& entry : node_) {
+    if (!entry.first.IsScalar()) {  // e.g. `? {a: 1}`: found by tests/fuzz (scenario)
+      problems_.add(where(entry.first) + ": " + keyPath("") + ": a key must be a plain word");
+      continue;
+    }
     const auto key = entry.first.as<std::string>();
     if (std::find(used_.begin(), used_.end(), key) == used_.end()) {
       problems_.add(where(entry.first) + ": " + keyPath(key) + ": unknown key");

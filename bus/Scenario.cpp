@@ -94,8 +94,14 @@ Scenario loadScenario(const std::string& path) {
 
   top.section("components");
   if (!top.has("components")) top.problem("", "missing key 'components'");
-  for (const auto& entry : scenario.root["components"]) {
+  const YAML::Node listed = scenario.root["components"];
+  if (listed && !listed.IsMap()) top.problem("components", "must map component names to sections");
+  for (const auto& entry : listed.IsMap() ? listed : YAML::Node(YAML::NodeType::Map)) {
     ComponentEntry component;
+    if (!entry.first.IsScalar()) {  // e.g. `? {a: 1}`: found by tests/fuzz (scenario)
+      top.problem("components", "a component name must be a plain word");
+      continue;
+    }
     component.name = entry.first.as<std::string>();
     ParamReader reader(entry.second, path, "components." + component.name, problems);
     reader.read("rate_divider", component.rate_divider);

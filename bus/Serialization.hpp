@@ -7,6 +7,8 @@
 
 #include <fastdds/rtps/common/SerializedPayload.h>
 
+#include "bus/GuardedType.hpp"
+
 namespace flatsat::bus {
 
 /// CDR bytes of a sample, as they travel on the wire (the recording format).
@@ -21,9 +23,11 @@ std::vector<std::uint8_t> serialize(const typename Def::Type& sample) {
   return {payload.data, payload.data + payload.length};
 }
 
+/// The sample of those bytes; throws std::runtime_error (never a decoder's
+/// own exception) when they do not decode.
 template <class Def>
 typename Def::Type deserialize(const std::vector<std::uint8_t>& bytes) {
-  typename Def::PubSubType type;
+  GuardedType<typename Def::PubSubType> type;
   eprosima::fastrtps::rtps::SerializedPayload_t payload(static_cast<std::uint32_t>(bytes.size()));
   std::copy(bytes.begin(), bytes.end(), payload.data);
   payload.length = static_cast<std::uint32_t>(bytes.size());

@@ -104,6 +104,7 @@ void TimeMaster::run() {
     spdlog::info("{}: every component ready; running steps 0..{} {}", name(), timing_.final_step,
                  paced() ? "paced on the wall clock" : "in lockstep");
     const auto start = std::chrono::steady_clock::now();
+    auto next_health = start + kHealthPeriod;
     for (std::uint64_t k = 0; k <= timing_.final_step; ++k) {
       const StepContext ctx{k, static_cast<std::int64_t>(k) * timing_.period_ns,
                             timing_.period_ns};
@@ -121,6 +122,10 @@ void TimeMaster::run() {
       }
       advance(ctx);
       dropInputsBefore(k);
+      if (std::chrono::steady_clock::now() > next_health) {  // heartbeat: counts stay current
+        publishHealth(msg::ComponentState::RUNNING, k + 1, "granting steps");
+        next_health += kHealthPeriod;
+      }
     }
     const StepContext end{timing_.final_step + 1,
                           static_cast<std::int64_t>(timing_.final_step + 1) * timing_.period_ns,

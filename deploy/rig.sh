@@ -3,6 +3,8 @@
 # One entry point for a fresh Debian 12 machine (as root) or a developer box:
 #   deploy/rig.sh run [SCENARIO] [flatsat run options]  install, build, run (default scenario)
 #   deploy/rig.sh test                                   install, build, run every test
+#   deploy/rig.sh fuzz [SECONDS]                         libFuzzer build (clang), each fuzz
+#                                                        target for SECONDS (default 600)
 #   deploy/rig.sh build | deps                           just those steps
 # Safe to re-run: it installs only what is missing and builds incrementally.
 set -euo pipefail
@@ -18,10 +20,12 @@ packages=(
   iproute2 tcpdump procps
   python3 gnuplot-nox
 )
+# Only for `fuzz`: clang with libFuzzer and the sanitizer runtimes.
+fuzz_packages=(clang libclang-rt-14-dev)
 
 deps() {
   local missing=()
-  for p in "${packages[@]}"; do
+  for p in "${packages[@]}" "$@"; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
   done
   [ ${#missing[@]} -eq 0 ] && return 0
@@ -48,10 +52,20 @@ case "$cmd" in
     if [ $# -gt 0 ] && [[ "$1" != -* ]]; then scenario="$1"; shift; fi
     exec "$build/bin/flatsat" run "$scenario" "$@"
     ;;
+  fuzz)
+    # Fuzz builds go to their own folder: every library is instrumented.
+    deps "${fuzz_packages[@]}"
+    fuzz_build="${FLATSAT_FUZZ_BUILD_DIR:-$here/build-fuzz}"
+    CXX=clang++ cmake -S "$here" -B "$fuzz_build" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+      -DFLATSAT_FUZZ=ON -DFLATSAT_FUZZ_SECONDS="${1:-600}" >/dev/null
+    cmake --build "$fuzz_build" -j"$jobs" --target fuzz_all
+    cd "$fuzz_build"
+    exec ctest --output-on-failure -R '^fuzz\.' --timeout 100000
+    ;;
   test)
     deps; build
     cd "$build"
     exec ctest --output-on-failure -j"$jobs" --timeout 1500
     ;;
-  *) echo "usage: $0 run [SCENARIO] [options] | test | build | deps" >&2; exit 2 ;;
+  *) echo "usage: $0 run [SCENARIO] [options] | test | fuzz [SECONDS] | build | deps" >&2; exit 2 ;;
 esac

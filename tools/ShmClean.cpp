@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "tools/ShmClean.hpp"
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <set>

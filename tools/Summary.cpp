@@ -103,11 +103,13 @@ nlohmann::ordered_json summarize(const bus::Scenario& scenario, const std::strin
   s["mode"] = scenario.pacing == bus::Pacing::kPaced ? "paced" : "lockstep";
   s["wheel_commands_late"] = late_commands;
   std::map<std::string, std::pair<std::uint64_t, std::uint64_t>> lateness;  // stale, overruns
+  nlohmann::ordered_json dropped = nlohmann::ordered_json::object();  // last count by component
   using HealthDef = std::remove_cvref_t<decltype(bus::topics::kHealth)>;
   recording.forEach(std::string(bus::topics::kHealth.name),
                     [&](std::uint64_t, const std::string& source, const std::vector<std::uint8_t>& bytes) {
                       const auto health = bus::deserialize<HealthDef>(bytes);
                       lateness[source] = {health.stale_inputs(), health.overruns()};
+                      dropped[source] = health.samples_dropped();
                     });
   std::uint64_t stale = 0, overruns = 0;
   for (const auto& [component, counts] : lateness) {
@@ -156,6 +158,12 @@ nlohmann::ordered_json summarize(const bus::Scenario& scenario, const std::strin
   s["external_joined_s"] = launch.external_joined_s;
   s["stale_inputs"] = stale;
   s["overruns"] = overruns;
+  // Received samples that did not decode, as each component's last recorded
+  // health counted them (a rogue or broken writer on the bus).
+  std::uint64_t dropped_total = 0;
+  for (const auto& [component, count] : dropped.items()) dropped_total += count.get<std::uint64_t>();
+  s["samples_dropped"] = dropped_total;
+  s["samples_dropped_by_component"] = dropped;
   addS0Metrics(s, scenario, recording);
   summarizeMagnetic(scenario, recording, s);
   summarizeEstimator(scenario, recording, s);

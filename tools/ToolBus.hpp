@@ -24,6 +24,7 @@
 #include <fastdds/dds/subscriber/qos/DataReaderQos.hpp>
 
 #include "bus/Bus.hpp"
+#include "bus/GuardedType.hpp"
 #include "bus/Topics.hpp"
 #include "msg/MsgJson.hpp"
 
@@ -124,7 +125,9 @@ class Tap : private eprosima::fastdds::dds::DataReaderListener {
         subscribed_ns_(std::chrono::duration_cast<std::chrono::nanoseconds>(
                            std::chrono::system_clock::now().time_since_epoch())
                            .count()) {
-    auto& topic = tool_bus.bus().topic(std::string(def.name), new typename Def::PubSubType());
+    auto& topic = tool_bus.bus().topic(std::string(def.name),
+                                       new bus::GuardedType<typename Def::PubSubType>(
+                                                     tool_bus.bus().dropCounter()));
     reader_ = subscriber_.create_datareader(&topic, tapQos(def.qos), this);
     if (reader_ == nullptr) {
       throw std::runtime_error("could not create a reader on " + std::string(def.name));

@@ -2,6 +2,7 @@
 #include "components/common/SensorFaults.hpp"
 
 #include <cmath>
+#include <limits>
 
 namespace flatsat {
 
@@ -45,6 +46,10 @@ std::vector<std::string> SensorFault::validate(int channels) const {
   }
   if (start_ns < 0) problems.push_back("start_s: must be >= 0");
   if (duration_ns < 0) problems.push_back("duration_s: must be >= 0 (0: until the end)");
+  // activeAt() adds them: the end must be a representable time (found by tests/fuzz, fault_cmd).
+  if (start_ns >= 0 && duration_ns > std::numeric_limits<std::int64_t>::max() - start_ns) {
+    problems.push_back("duration_s: start + duration is beyond the representable time");
+  }
   return problems;
 }
 

@@ -89,15 +89,16 @@ UnloadingControllerNode::UnloadingControllerNode(bus::Bus& bus, bus::NodeOptions
 }
 
 void UnloadingControllerNode::receive(const msg::ModeCmd& command) {
-  const int mode = static_cast<int>(command.mode());
-  if (mode < 0 || mode > static_cast<int>(MagneticMode::kSpinCapture)) {
-    spdlog::warn("{}: mode command {} from {} refused", name(), mode, bus::text(command.header().source()));
+  const auto mode = commandedMode(command);
+  if (!mode) {
+    const auto value = static_cast<std::int64_t>(command.mode());
+    spdlog::warn("{}: mode command {} from {} refused", name(), value, bus::text(command.header().source()));
     acks_.queue(command.command_id(), "mode", false,
-                "mode " + std::to_string(mode) + " is not unload, detumble or spin_capture");
+                "mode " + std::to_string(value) + " is not unload, detumble or spin_capture");
     return;
   }
   std::lock_guard lock(mode_mutex_);
-  requested_mode_ = static_cast<MagneticMode>(mode);
+  requested_mode_ = *mode;
   mode_command_ids_.push_back(command.command_id());
 }
 

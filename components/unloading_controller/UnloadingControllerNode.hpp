@@ -24,6 +24,14 @@ struct UnloadingControllerNodeParams {
   FieldSource field_source = FieldSource::kMagnetometer;
 };
 
+/// The mode a command asks for; nothing when its mode is not one of
+/// MagneticMode's (a raw enum off the wire can hold any 32-bit value).
+inline std::optional<MagneticMode> commandedMode(const msg::ModeCmd& command) {
+  const auto mode = static_cast<std::int64_t>(command.mode());
+  if (mode < 0 || mode > static_cast<std::int64_t>(MagneticMode::kSpinCapture)) return std::nullopt;
+  return static_cast<MagneticMode>(mode);
+}
+
 /// The magnetorquers' owner: wheel speeds and the field in, torquer dipole out,
 /// in the mode the scenario or flatsat/unloading_mode_cmd sets (unload,
 /// detumble, spin capture; MagneticModes). Windows other components request
