@@ -95,7 +95,7 @@ TEST_CASE("SIGKILL of the recorder or the dynamics server leaves a readable reco
   test::exportTestDomain();
   const std::string reference_dir = test::freshDir("crash-reference");
   const auto reference_run =
-      test::runCommand(test::kFlatsat + " run " + kDefault + " -q --out " + reference_dir + " " + kArgs);
+      test::runCommand(test::kFlatsat + " run " + kDefault + " -q --no-plots --out " + reference_dir + " " + kArgs);
   INFO(reference_run.output);
   REQUIRE(reference_run.exit_code == 0);
   const Samples reference = readSamples(reference_dir + "/recording.sqlite");
@@ -111,7 +111,7 @@ TEST_CASE("SIGKILL of the recorder or the dynamics server leaves a readable reco
       const std::string out = test::freshDir("crash-" + victim);
       const std::string recording = out + "/recording.sqlite";
       const pid_t launcher = test::startCommand(
-          test::kFlatsat + " run " + kDefault + " -q --out " + out + " " + kArgs, out + ".log");
+          test::kFlatsat + " run " + kDefault + " -q --no-plots --out " + out + " " + kArgs, out + ".log");
       // Kill once the recorder has committed a few transactions.
       std::uint64_t seen = 0;
       const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);

@@ -146,7 +146,7 @@ TEST_CASE("the namespace rig removes its namespaces when the run fails", "[syste
 TEST_CASE("bad rig settings are refused, naming the setting", "[system][network]") {
   test::exportTestDomain();
   const std::string out = test::freshDir("netns-settings");
-  const std::string run = test::kFlatsat + " run " + kDefault + " -q --out " + out + " ";
+  const std::string run = test::kFlatsat + " run " + kDefault + " -q --no-plots --out " + out + " ";
   const auto malformed = test::runCommand("FLATSAT_PEERS=10.213.7 " + run);
   CHECK(malformed.exit_code == 1);
   CHECK(malformed.output.find("FLATSAT_PEERS='10.213.7': '10.213.7' is not an IPv4 address") !=
