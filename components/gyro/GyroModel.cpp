@@ -13,11 +13,31 @@ std::vector<std::string> GyroParams::validate() const {
   requireNonNegative(errors, "angle_random_walk_rad_per_sqrt_s", angle_random_walk_rad_per_sqrt_s);
   requireNonNegative(errors, "rate_random_walk_rad_per_s_sqrt_s", rate_random_walk_rad_per_s_sqrt_s);
   requireFinite(errors, "bias0_B_rad_s", bias0_B_rad_s);
+  if (!(scale_factor.array().abs() < 0.1).all()) errors.push_back("scale_factor: each must be in (-0.1, 0.1)");
+  if (!(misalignment_rad.array().abs() < 0.1).all()) {
+    errors.push_back("misalignment_rad: each must be in (-0.1, 0.1)");
+  }
   return errors;
 }
 
+namespace {
+
+/// ω_sensed = (I + S)(I − [m×]) ω: each axis reads its rate scaled by 1 + s_i about an input
+/// axis turned by the small rotation m (the scale-factor and input-axis-misalignment terms of
+/// the IEEE Std 952-1997 gyro model equation, to first order in m).
+Eigen::Matrix3d sensedFromTrue(const GyroParams& p) {
+  Eigen::Matrix3d cross;
+  const Eigen::Vector3d& m = p.misalignment_rad;
+  cross << 0.0, -m.z(), m.y(), m.z(), 0.0, -m.x(), -m.y(), m.x(), 0.0;
+  return (Eigen::Matrix3d::Identity() + p.scale_factor.asDiagonal().toDenseMatrix()) *
+         (Eigen::Matrix3d::Identity() - cross);
+}
+
+}  // namespace
+
 GyroModel::GyroModel(const Params& params)
-    : params_(params), noise_(params.seed), bias_B_rad_s_(params.bias0_B_rad_s) {
+    : params_(params), sensed_from_true_(sensedFromTrue(params)), noise_(params.seed),
+      bias_B_rad_s_(params.bias0_B_rad_s) {
   if (const auto errors = params_.validate(); !errors.empty()) {
     std::string message = "GyroParams invalid:";
     for (const auto& e : errors) {
@@ -42,8 +62,9 @@ GyroOutput GyroModel::step(const Input& in, std::int64_t t_ns) {
   has_last_t_ = true;
 
   Output out;
+  const Eigen::Vector3d w_sensed = sensed_from_true_ * in.w_NB_B_rad_s;
   if (!(dt_s > 0.0)) {
-    out.w_NB_B_rad_s = in.w_NB_B_rad_s + bias_B_rad_s_;
+    out.w_NB_B_rad_s = w_sensed + bias_B_rad_s_;
     out.bias_B_rad_s = bias_B_rad_s_;
     return out;
   }
@@ -59,7 +80,7 @@ GyroOutput GyroModel::step(const Input& in, std::int64_t t_ns) {
   const Eigen::Vector3d bias_prev = bias_B_rad_s_;
   bias_B_rad_s_ += rrw * std::sqrt(dt_s) * n_u;
   const double sigma_v = std::sqrt(arw * arw / dt_s + rrw * rrw * dt_s / 12.0);
-  out.w_NB_B_rad_s = in.w_NB_B_rad_s + 0.5 * (bias_prev + bias_B_rad_s_) + sigma_v * n_v;
+  out.w_NB_B_rad_s = w_sensed + 0.5 * (bias_prev + bias_B_rad_s_) + sigma_v * n_v;
   out.bias_B_rad_s = bias_B_rad_s_;
   return out;
 }

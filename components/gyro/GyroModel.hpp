@@ -11,12 +11,15 @@
 
 namespace flatsat::gyro {
 
-/// Rate-integrating gyro triad, Farrenkopf noise model (white rate noise + random-walk bias).
+/// Rate-integrating gyro triad, Farrenkopf noise model (white rate noise + random-walk bias),
+/// with scale-factor and misalignment errors.
 struct GyroParams {
   double angle_random_walk_rad_per_sqrt_s = 4.363e-5;     // [rad/√s] ARW σ_v (0.15 °/√h), >= 0
   double rate_random_walk_rad_per_s_sqrt_s = 1.0e-6;      // [rad/s/√s] bias drift σ_u, >= 0
   Eigen::Vector3d bias0_B_rad_s = Eigen::Vector3d::Zero();  // [rad/s] bias at reset, finite
   std::uint64_t seed = 3;                                   // [-] noise seed, any value
+  Eigen::Vector3d scale_factor = Eigen::Vector3d::Zero();   // [-] error per axis (100 ppm = 1e-4), each in (-0.1, 0.1)
+  Eigen::Vector3d misalignment_rad = Eigen::Vector3d::Zero();  // [rad] small rotation of the triad from body axes, each in (-0.1, 0.1)
 
   /// Every violation as "field: reason"; empty when valid.
   std::vector<std::string> validate() const;
@@ -54,6 +57,7 @@ class GyroModel {
 
  private:
   Params params_;
+  Eigen::Matrix3d sensed_from_true_;  // (I + diag(scale factor))(I − [misalignment×])
   GaussianNoise noise_;
   Eigen::Vector3d bias_B_rad_s_;
   std::int64_t last_t_ns_ = 0;

@@ -10,6 +10,8 @@ EmulatorParams<GyroParams> readParams(const bus::Scenario& scenario, const bus::
     r.read("angle_random_walk_rad_per_sqrt_s", m.angle_random_walk_rad_per_sqrt_s, "-");
     r.read("rate_random_walk_rad_per_s_sqrt_s", m.rate_random_walk_rad_per_s_sqrt_s, "-");
     r.read("bias0_body_rad_s", m.bias0_B_rad_s, "rad/s");
+    r.read("scale_factor", m.scale_factor, "-");
+    r.read("misalignment_rad", m.misalignment_rad, "rad");
       });
 }
 

@@ -35,7 +35,14 @@ RecorderNode::RecorderNode(bus::Bus& bus, bus::NodeOptions options, const Record
   mode_commands_ = recordAsItComes(bus, bus::topics::kUnloadingModeCmd);
   param_commands_ = recordAsItComes(bus, bus::topics::kParamCmd);
   acks_ = recordAsItComes(bus, bus::topics::kCommandAck);
-  grants_ = recordAsItComes(bus, bus::topics::kStepGrant);
+  // The grants of steps 0..final, not the closing "stop": it races the
+  // recorder's own shutdown, and a recording must not depend on who won.
+  grants_ = std::make_unique<bus::ReaderOf<bus::topics::kStepGrant>>(
+      bus, bus::topics::kStepGrant, [this](const msg::StepGrant& grant) {
+        if (grant.stop()) return;
+        store(std::string(bus::topics::kStepGrant.name), grant.header(),
+              bus::serialize<std::remove_cvref_t<decltype(bus::topics::kStepGrant)>>(grant));
+      });
   for (const auto& [key, value] : params.meta) recording_.setMeta(key, value);
 }
 

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <limits>
 #include <stdexcept>
+#include <vector>
 
 #include <catch2/catch.hpp>
 
@@ -138,4 +139,75 @@ TEST_CASE("Gyro params reject bad values", "[components][gyro]") {
   CHECK(errors[1].rfind("rate_random_walk_rad_per_s_sqrt_s:", 0) == 0);
   CHECK(errors[2].rfind("bias0_B_rad_s:", 0) == 0);
   CHECK_THROWS_AS(GyroModel(p), std::invalid_argument);
+}
+
+namespace {
+
+/// Overlapping Allan deviation of rate samples at cluster size m (IEEE Std 952-1997, Annex C):
+/// σ²(τ) = Σ (θ_{k+2m} − 2θ_{k+m} + θ_k)² / (2τ²(N − 2m)), θ the integrated angle.
+double allanDeviation(const std::vector<double>& rate, double dt_s, std::size_t m) {
+  std::vector<double> theta(rate.size() + 1, 0.0);
+  for (std::size_t k = 0; k < rate.size(); ++k) theta[k + 1] = theta[k] + rate[k] * dt_s;
+  const std::size_t n = theta.size();
+  double sum = 0.0;
+  for (std::size_t k = 0; k + 2 * m < n; ++k) {
+    const double d = theta[k + 2 * m] - 2.0 * theta[k + m] + theta[k];
+    sum += d * d;
+  }
+  const double tau = static_cast<double>(m) * dt_s;
+  return std::sqrt(sum / (2.0 * tau * tau * static_cast<double>(n - 2 * m)));
+}
+
+std::vector<double> stationaryRates(const GyroParams& p, double dt_s, int samples) {
+  GyroModel gyro(p);
+  const auto dt_ns = static_cast<std::int64_t>(dt_s * 1e9);
+  gyro.step({Eigen::Vector3d::Zero()}, 0);
+  std::vector<double> x;
+  x.reserve(static_cast<std::size_t>(samples));
+  for (int k = 1; k <= samples; ++k) x.push_back(gyro.step({Eigen::Vector3d::Zero()}, k * dt_ns).w_NB_B_rad_s.x());
+  return x;
+}
+
+}  // namespace
+
+TEST_CASE("Gyro Allan deviation follows N/sqrt(tau) and K sqrt(tau/3)", "[components][gyro]") {
+  // The two slopes of IEEE Std 952-1997 Annex C: angle random walk N gives σ(τ) = N/√τ,
+  // rate random walk K gives σ(τ) = K√(τ/3).
+  GyroParams arw;
+  arw.angle_random_walk_rad_per_sqrt_s = 2.9e-6;
+  arw.rate_random_walk_rad_per_s_sqrt_s = 0.0;
+  const auto white = stationaryRates(arw, 0.1, 400000);
+  for (std::size_t m : {10, 100, 1000}) {
+    const double tau = 0.1 * static_cast<double>(m);
+    CAPTURE(tau);
+    // Relative error of the estimate ~ 1/sqrt(2 (N/m − 1)): < 4 % at τ = 100 s.
+    CHECK(allanDeviation(white, 0.1, m) / (arw.angle_random_walk_rad_per_sqrt_s / std::sqrt(tau)) ==
+          Approx(1.0).margin(0.08));
+  }
+  GyroParams rrw;
+  rrw.angle_random_walk_rad_per_sqrt_s = 0.0;
+  rrw.rate_random_walk_rad_per_s_sqrt_s = 1.0e-9;
+  const auto walk = stationaryRates(rrw, 1.0, 1000000);
+  for (std::size_t m : {100, 1000}) {
+    const double tau = static_cast<double>(m);
+    CAPTURE(tau);
+    CHECK(allanDeviation(walk, 1.0, m) / (rrw.rate_random_walk_rad_per_s_sqrt_s * std::sqrt(tau / 3.0)) ==
+          Approx(1.0).margin(0.15));
+  }
+}
+
+TEST_CASE("Gyro scale factor and misalignment act on the true rate", "[components][gyro]") {
+  GyroParams p;
+  p.angle_random_walk_rad_per_sqrt_s = 0.0;
+  p.rate_random_walk_rad_per_s_sqrt_s = 0.0;
+  p.scale_factor = Eigen::Vector3d(100e-6, -200e-6, 0.0);
+  p.misalignment_rad = Eigen::Vector3d(0.0, 0.0, 1e-3);  // triad turned 1 mrad about z
+  GyroModel gyro(p);
+  const auto out = gyro.step({Eigen::Vector3d(0.1, 0.0, 0.0)}, 0);
+  // x reads 0.1 (1 + 100 ppm); the turned y axis sees −sin(1 mrad) of the x rate, scaled.
+  CHECK(out.w_NB_B_rad_s.x() == Approx(0.1 * (1 + 100e-6)).epsilon(1e-12));
+  CHECK(out.w_NB_B_rad_s.y() == Approx(-0.1 * 1e-3 * (1 - 200e-6)).epsilon(1e-12));
+  CHECK(out.w_NB_B_rad_s.z() == 0.0);
+  p.scale_factor.x() = 0.2;
+  CHECK(p.validate().size() == 1);
 }
