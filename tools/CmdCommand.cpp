@@ -72,6 +72,20 @@ int send(const Def& def, typename Def::Type command, const std::string& what, co
     lock.lock();
     if (!go_on) return 1;
   }
+  lock.unlock();
+  // The rig's recorder may match this writer after the component did: keep the command
+  // on offer until the matches have settled for a second and every matched reader has it.
+  int matched = writer.matchedReaders();
+  auto settled_since = Clock::now();
+  const auto linger_end = Clock::now() + std::chrono::seconds(5);
+  while (Clock::now() - settled_since < std::chrono::seconds(1) && Clock::now() < linger_end) {
+    if (!sleepUnlessInterrupted(0.05)) break;
+    if (const int now = writer.matchedReaders(); now != matched) {
+      matched = now;
+      settled_since = Clock::now();
+    }
+  }
+  writer.waitForAcknowledgments(std::chrono::seconds(2));
   const double t_s = static_cast<double>(ack->header().sim_time_ns()) * 1e-9;
   std::printf("%s: %s by %s at step %llu (t = %.1f s): %s\n", what.c_str(),
               ack->accepted() ? "accepted" : "refused", bus::text(ack->header().source()).c_str(),
