@@ -4,6 +4,7 @@
 #include <functional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <fastdds/dds/publisher/DataWriter.hpp>
 #include <fastdds/dds/subscriber/DataReader.hpp>
@@ -41,6 +42,18 @@ class Writer {
     eprosima::fastdds::dds::PublicationMatchedStatus status;
     writer_->get_publication_matched_status(status);
     return status.current_count;
+  }
+  /// The participants (GUID prefixes) of the readers matched now.
+  std::vector<eprosima::fastrtps::rtps::GuidPrefix_t> matchedReaderParticipants() const {
+    std::vector<eprosima::fastdds::dds::InstanceHandle_t> handles;
+    writer_->get_matched_subscriptions(handles);
+    std::vector<eprosima::fastrtps::rtps::GuidPrefix_t> prefixes;
+    for (const auto& handle : handles) {
+      eprosima::fastrtps::rtps::GUID_t guid;
+      eprosima::fastrtps::rtps::iHandle2GUID(guid, handle);
+      prefixes.push_back(guid.guidPrefix);
+    }
+    return prefixes;
   }
   /// Blocks until every matched reader acknowledged what was written.
   bool waitForAcknowledgments(std::chrono::milliseconds timeout) {

@@ -34,10 +34,28 @@ const std::map<std::string, msg::MagneticMode> kModes = {
     {"detumble", msg::MAGNETIC_DETUMBLE},
     {"spin_capture", msg::MAGNETIC_SPIN_CAPTURE}};
 
+constexpr const char* kRecorder = "recorder";  // participant name of the rig's recorder
+
+bool recorderDiscovered(const ToolBus& tool_bus) {
+  for (const auto& [prefix, participant] : tool_bus.participants()) {
+    if (participant.alive && participant.name == kRecorder) return true;
+  }
+  return false;
+}
+
+template <class Def>
+bool recorderMatched(const ToolBus& tool_bus, const bus::Writer<Def>& writer) {
+  for (const auto& prefix : writer.matchedReaderParticipants()) {
+    if (tool_bus.participantName(prefix) == kRecorder) return true;
+  }
+  return false;
+}
+
 /// Writes `command` on `def`'s topic (kept for late joiners while the tool
 /// waits: transient-local) and waits for the acknowledgement carrying its id.
 template <class Def>
 int send(const Def& def, typename Def::Type command, const std::string& what, const CmdOptions& o) {
+  const auto started = Clock::now();
   ToolBus tool_bus("cmd", o.domain);
   const std::uint64_t id = std::random_device{}() * 0x100000000ULL + std::random_device{}();
   command.command_id(id);
@@ -73,17 +91,14 @@ int send(const Def& def, typename Def::Type command, const std::string& what, co
     if (!go_on) return 1;
   }
   lock.unlock();
-  // The rig's recorder may match this writer after the component did: keep the command
-  // on offer until the matches have settled for a second and every matched reader has it.
-  int matched = writer.matchedReaders();
-  auto settled_since = Clock::now();
-  const auto linger_end = Clock::now() + std::chrono::seconds(5);
-  while (Clock::now() - settled_since < std::chrono::seconds(1) && Clock::now() < linger_end) {
+  // The component matched this writer, the rig's recorder may not have yet: its
+  // participant announces itself 0..3 s late when a first announcement is lost
+  // under load. Keep the command on offer (transient-local) until a reader of
+  // the recorder's participant has matched, or discovery found no recorder.
+  const auto discovery_end = started + std::chrono::duration<double>(kDiscoverySeconds);
+  while (!recorderMatched(tool_bus, writer) && Clock::now() < deadline) {
+    if (Clock::now() > discovery_end && !recorderDiscovered(tool_bus)) break;
     if (!sleepUnlessInterrupted(0.05)) break;
-    if (const int now = writer.matchedReaders(); now != matched) {
-      matched = now;
-      settled_since = Clock::now();
-    }
   }
   writer.waitForAcknowledgments(std::chrono::seconds(2));
   const double t_s = static_cast<double>(ack->header().sim_time_ns()) * 1e-9;
