@@ -16,6 +16,8 @@
 #include <fastrtps/utils/IPLocator.h>
 #include <spdlog/spdlog.h>
 
+#include "bus/Security.hpp"
+
 namespace flatsat::bus {
 
 namespace dds = eprosima::fastdds::dds;
@@ -144,6 +146,7 @@ std::uint32_t domainFromEnvironment(std::uint32_t scenario_domain) {
 
 BusNetwork networkFromEnvironment() {
   BusNetwork network;
+  network.security_dir = securityDirFromEnvironment();
   const char* multicast = std::getenv("FLATSAT_NETWORK");
   if (multicast != nullptr && std::string(multicast) == "1") network.profile = NetworkProfile::kNetwork;
   const char* peers = std::getenv("FLATSAT_PEERS");
@@ -173,11 +176,18 @@ Bus::Bus(const BusOptions& options) : options_(options) {
              : options.profile == NetworkProfile::kPeers ? peersQos(options.domain_id, options.peers)
                                                          : networkQos();
   qos.name(options.participant_name);
+  if (!options.security_dir.empty()) {
+    addSecurity(qos, options.security_dir,
+                options.identity.empty() ? options.participant_name : options.identity);
+  }
   participant_ = dds::DomainParticipantFactory::get_instance()->create_participant(
       options.domain_id, qos);
   if (participant_ == nullptr) {
-    throw std::runtime_error("could not create a DDS participant on domain " +
-                             std::to_string(options.domain_id));
+    throw std::runtime_error(
+        "could not create a DDS participant on domain " + std::to_string(options.domain_id) +
+        (options.security_dir.empty() ? std::string()
+                                      : " with DDS Security from " + options.security_dir +
+                                            " (a certificate or signed grant did not verify)"));
   }
   publisher_ = participant_->create_publisher(dds::PUBLISHER_QOS_DEFAULT);
   subscriber_ = participant_->create_subscriber(dds::SUBSCRIBER_QOS_DEFAULT);

@@ -34,13 +34,19 @@ struct BusOptions {
   QosTuning tuning;  ///< applied to every endpoint of this participant
   /// kPeers: IPv4 addresses of the rig's hosts, this host's among them
   std::vector<std::string> peers;
+  /// DDS Security directory (bus/Security.hpp); "" for an open bus
+  std::string security_dir;
+  /// certificate and grant used with security_dir; "" means participant_name
+  std::string identity;
 };
 
 /// A process's network from its environment: FLATSAT_PEERS=a,b,... selects
-/// kPeers with those hosts, FLATSAT_NETWORK=1 kNetwork, neither kLoopback.
+/// kPeers with those hosts, FLATSAT_NETWORK=1 kNetwork, neither kLoopback;
+/// FLATSAT_SECURE_DIR turns DDS Security on.
 struct BusNetwork {
   NetworkProfile profile = NetworkProfile::kLoopback;
   std::vector<std::string> peers;
+  std::string security_dir;  ///< FLATSAT_SECURE_DIR: DDS Security on, with that directory's files
 };
 
 /// Domain id for a process: FLATSAT_DOMAIN overrides the scenario's value.

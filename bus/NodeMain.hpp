@@ -47,8 +47,13 @@ int runNode(int argc, char** argv, const std::string& default_name, Read&& read,
       return 2;
     }
     const BusNetwork network = networkFromEnvironment();
-    Bus bus({domainFromEnvironment(scenario.domain_id), network.profile, args.name,
-             qosTuning(scenario, ownership_strength), network.peers});
+    Bus bus({.domain_id = domainFromEnvironment(scenario.domain_id),
+             .profile = network.profile,
+             .participant_name = args.name,
+             .tuning = qosTuning(scenario, ownership_strength),
+             .peers = network.peers,
+             .security_dir = network.security_dir,
+             .identity = args.name});
     auto node = make(bus, nodeOptions(scenario, args.name), params);
     node->run();
     return 0;

@@ -24,6 +24,7 @@
 #include "bus/Stamp.hpp"
 #include "bus/Topics.hpp"
 #include "bus/NodeMain.hpp"
+#include "bus/Security.hpp"
 #include "components/Registry.hpp"
 
 extern char** environ;
@@ -208,7 +209,7 @@ LaunchResult launch(const bus::Scenario& scenario, const LaunchOptions& options)
   const auto network = bus::networkFromEnvironment();
   bus::Bus bus({bus::domainFromEnvironment(scenario.domain_id), network.profile,
                 "flatsat-launcher", bus::qosTuning(scenario, bus::kEmulatorStrength),
-                network.peers});
+                network.peers, network.security_dir, bus::kOperatorIdentity});
   Progress progress(bus, options.progress);
 
   const auto start = Clock::now();

@@ -13,6 +13,7 @@
 
 #include "bus/Recording.hpp"
 #include "bus/RecordingMeta.hpp"
+#include "bus/Security.hpp"
 #include "bus/Serialization.hpp"
 #include "bus/TimeMaster.hpp"
 #include "tools/ToolBus.hpp"
@@ -220,6 +221,8 @@ int replay(const ReplayOptions& o) {
   const auto network = bus::networkFromEnvironment();
   bus_options.profile = network.profile;
   bus_options.peers = network.peers;
+  bus_options.security_dir = network.security_dir;
+  bus_options.identity = bus::kOperatorIdentity;
   bus_options.participant_name = "flatsat-replay";
   // A component configured paced expects its producers' liveliness lease.
   bus_options.tuning.watch_liveliness = recording.meta(bus::meta::kMode) == "paced";

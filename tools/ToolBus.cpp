@@ -9,6 +9,7 @@
 #include <fastdds/rtps/builtin/data/WriterProxyData.h>
 
 #include "bus/Scenario.hpp"
+#include "bus/Security.hpp"
 #include "bus/Shutdown.hpp"
 
 namespace flatsat::tools {
@@ -74,6 +75,8 @@ ToolBus::ToolBus(const std::string& tool_name, int domain_option)
   const auto network = bus::networkFromEnvironment();
   options.profile = network.profile;
   options.peers = network.peers;
+  options.security_dir = network.security_dir;
+  options.identity = bus::kOperatorIdentity;
   options.participant_name = "flatsat-" + tool_name;
   bus_ = disabledBus(options);
   bus_->participant().set_listener(this, dds::StatusMask::none());

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -15,6 +16,7 @@
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
+#include "bus/Security.hpp"
 #include "bus/Shutdown.hpp"
 #include "components/Registry.hpp"
 #include "tools/FieldCommand.hpp"
@@ -66,6 +68,7 @@ struct RunOptions {
   std::optional<std::uint64_t> seed;  // --seed: replaces the scenario's seed (dispersed initial conditions, noise)
   std::string log_level = "info";
   std::vector<std::string> prefixes;  // --prefix COMPONENT=COMMAND
+  std::string secure;                 // --secure DIR: DDS Security with deploy/security/make-certs.sh's files
   bool quiet = false;
   bool json = false;
   bool plots = true;  // the review figures into <run>/plots (flatsat plot)
@@ -99,6 +102,24 @@ bool parsePrefixes(const std::vector<std::string>& options, const bus::Scenario&
   return true;
 }
 
+/// --secure DIR: every component and the launcher must find their certificate,
+/// key and grant there; the children inherit FLATSAT_SECURE_DIR.
+bool enableSecurity(const std::string& dir, const bus::Scenario& scenario) {
+  const std::string absolute = fs::absolute(dir).string();
+  try {
+    eprosima::fastdds::dds::DomainParticipantQos scratch;
+    bus::addSecurity(scratch, absolute, bus::kOperatorIdentity);
+    for (const auto& component : scenario.components) {
+      if (component.launched) bus::addSecurity(scratch, absolute, component.name);
+    }
+  } catch (const std::invalid_argument& e) {
+    std::cerr << "error: --secure " << dir << ": " << e.what() << "\n";
+    return false;
+  }
+  ::setenv("FLATSAT_SECURE_DIR", absolute.c_str(), 1);
+  return true;
+}
+
 int run(const RunOptions& o, nlohmann::ordered_json* summary_out = nullptr) {
   bus::Scenario original;
   if (!loadChecked(o.scenario, o.out, original)) return kExitBadInput;
@@ -121,6 +142,7 @@ int run(const RunOptions& o, nlohmann::ordered_json* summary_out = nullptr) {
   tools::LaunchOptions launch_options{bin_dir, run_dir, fs::absolute(scenario.file).string(),
                                       o.log_level, !o.quiet};
   if (!parsePrefixes(o.prefixes, scenario, launch_options.prefixes)) return kExitBadInput;
+  if (!o.secure.empty() && !enableSecurity(o.secure, scenario)) return kExitBadInput;
   // Segments left by processes killed in an earlier run go first.
   tools::cleanStaleSharedMemory(tools::kShmGrace);
   if (!o.quiet) {
@@ -220,6 +242,9 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--prefix", run_options.prefixes,
                       "COMPONENT=COMMAND: start that component under COMMAND (split at spaces), "
                       "e.g. gyro='ip netns exec fs-b'; * for every other component");
+  run_cmd->add_option("--secure", run_options.secure,
+                      "DDS Security on: certificates, keys and signed grants from this directory "
+                      "(deploy/security/make-certs.sh DIR)");
 
   std::string check_file;
   auto* check_cmd = app.add_subcommand("check", "check a scenario without running it");

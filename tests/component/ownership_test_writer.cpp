@@ -18,8 +18,9 @@ int main(int argc, char** argv) {
   tuning.watch_liveliness = true;
   tuning.lease = std::chrono::milliseconds(std::atoi(argv[4]));
   tuning.ownership_strength = std::atoi(argv[2]);
-  bus::Bus bus({static_cast<std::uint32_t>(std::atoi(argv[1])), bus::NetworkProfile::kLoopback,
-                argv[3], tuning});
+  bus::Bus bus({.domain_id = static_cast<std::uint32_t>(std::atoi(argv[1])),
+                .participant_name = argv[3],
+                .tuning = tuning});
   bus::WriterOf<bus::topics::kMagnetometer> writer(bus, bus::topics::kMagnetometer);
   for (std::uint64_t k = 0;; ++k) {
     msg::MagnetometerReading reading;

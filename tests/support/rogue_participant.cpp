@@ -35,7 +35,7 @@ int main(int argc, char** argv) {
   bus::QosTuning tuning;
   tuning.watch_liveliness = true;
   tuning.lease = std::chrono::milliseconds(100);
-  bus::Bus bus({bus::domainFromEnvironment(0), bus::NetworkProfile::kLoopback, "rogue", tuning});
+  bus::Bus bus({.domain_id = bus::domainFromEnvironment(0), .participant_name = "rogue", .tuning = tuning});
   std::vector<std::unique_ptr<test::RogueWriter>> writers;
   bus::forEachTopic([&](const auto& def) {
     writers.push_back(std::make_unique<test::RogueWriter>(bus, def, bus.tuning()));

@@ -1,0 +1,113 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
+# Makes what `flatsat run SCENARIO --secure DIR` needs (bus/Security.hpp):
+#   make-certs.sh DIR [IDENTITY ...]
+# Two CAs (identity, permissions), a signed governance document and, for
+# each identity (default: every component kind and `operator`), an ECDSA
+# P-256 key, a certificate and a signed grant. Only `operator` (the flatsat
+# tools) may publish commands; components may publish and subscribe to
+# everything else. DIR/private keeps the CA keys: re-running adds missing
+# identities with the same CAs and leaves existing ones as they are.
+set -euo pipefail
+[ $# -ge 1 ] || { echo "usage: $0 DIR [IDENTITY ...]" >&2; exit 2; }
+dir=$1; shift
+# The component kinds of components/Registry.cpp, and the operator tools.
+identities=("$@")
+[ ${#identities[@]} -gt 0 ] || identities=(
+  dynamics_server magnetometer sun_sensor gyro wheel_tach star_tracker estimator
+  attitude_controller unloading_controller thruster_sequencer recorder
+  magnetometer_bridge magnetometer_device operator)
+command_topics=(flatsat/fault_cmd flatsat/unloading_mode_cmd flatsat/param_cmd)
+days=3650
+mkdir -p "$dir/private"
+chmod 700 "$dir/private"
+
+ca() {  # name subject
+  [ -f "$dir/$1.pem" ] && return 0
+  openssl ecparam -name prime256v1 -genkey -noout -out "$dir/private/$1_key.pem"
+  openssl req -x509 -new -sha256 -key "$dir/private/$1_key.pem" -subj "$2" -days "$days" \
+    -out "$dir/$1.pem"
+}
+ca identity_ca "/O=flatsat/CN=flatsat identity CA"
+ca permissions_ca "/O=flatsat/CN=flatsat permissions CA"
+
+sign() {  # in.xml out.p7s: S/MIME, signed by the permissions CA (DDS-Security 1.1 §9.4.1.2)
+  openssl smime -sign -in "$1" -text -out "$2" -signer "$dir/permissions_ca.pem" \
+    -inkey "$dir/private/permissions_ca_key.pem"
+}
+
+domains='<domains><id_range><min>0</min><max>232</max></id_range></domains>'
+topic_list() { for t in "$@"; do printf '<topic>%s</topic>' "$t"; done; }
+
+# Governance (DDS-Security 1.1 §9.4.1.2.3): only authenticated participants
+# join; every topic's discovery, metadata and data are encrypted, and read
+# and write access are checked against the grants.
+if [ ! -f "$dir/governance.p7s" ]; then
+  cat > "$dir/governance.xml" <<XML
+<?xml version="1.0" encoding="utf-8"?>
+<dds xmlns:xsi="http://www.w3.org/2001/XMLSchema-instance"
+     xsi:noNamespaceSchemaLocation="omg_shared_ca_domain_governance.xsd">
+  <domain_access_rules>
+    <domain_rule>
+      $domains
+      <allow_unauthenticated_participants>false</allow_unauthenticated_participants>
+      <enable_join_access_control>true</enable_join_access_control>
+      <discovery_protection_kind>ENCRYPT</discovery_protection_kind>
+      <liveliness_protection_kind>ENCRYPT</liveliness_protection_kind>
+      <rtps_protection_kind>SIGN</rtps_protection_kind>
+      <topic_access_rules>
+        <topic_rule>
+          <topic_expression>*</topic_expression>
+          <enable_discovery_protection>true</enable_discovery_protection>
+          <enable_liveliness_protection>true</enable_liveliness_protection>
+          <enable_read_access_control>true</enable_read_access_control>
+          <enable_write_access_control>true</enable_write_access_control>
+          <metadata_protection_kind>ENCRYPT</metadata_protection_kind>
+          <data_protection_kind>ENCRYPT</data_protection_kind>
+        </topic_rule>
+      </topic_access_rules>
+    </domain_rule>
+  </domain_access_rules>
+</dds>
+XML
+  sign "$dir/governance.xml" "$dir/governance.p7s"
+fi
+
+not_before=$(date -u -d '-1 day' +%Y-%m-%dT%H:%M:%S)
+not_after=$(date -u -d "+$days days" +%Y-%m-%dT%H:%M:%S)
+for id in "${identities[@]}"; do
+  [[ "$id" =~ ^[a-z0-9_]+$ ]] || { echo "make-certs.sh: '$id': identities are [a-z0-9_]+" >&2; exit 2; }
+  own="$dir/$id"
+  [ -f "$own/permissions.p7s" ] && continue
+  mkdir -p "$own"
+  openssl ecparam -name prime256v1 -genkey -noout -out "$own/key.pem"
+  chmod 600 "$own/key.pem"
+  openssl req -new -sha256 -key "$own/key.pem" -subj "/O=flatsat/CN=$id" -out "$own/cert.csr"
+  openssl x509 -req -sha256 -in "$own/cert.csr" -CA "$dir/identity_ca.pem" \
+    -CAkey "$dir/private/identity_ca_key.pem" -CAcreateserial -days "$days" -out "$own/cert.pem" \
+    2>/dev/null
+  rm -f "$own/cert.csr"
+  # The grant (DDS-Security 1.1 §9.4.1.3): rules apply in order, the first match wins.
+  if [ "$id" = operator ]; then
+    rules="<allow_rule>$domains<publish><topics><topic>*</topic></topics></publish><subscribe><topics><topic>*</topic></topics></subscribe></allow_rule>"
+  else
+    rules="<deny_rule>$domains<publish><topics>$(topic_list "${command_topics[@]}")</topics></publish></deny_rule>"
+    rules+="<allow_rule>$domains<publish><topics><topic>*</topic></topics></publish><subscribe><topics><topic>*</topic></topics></subscribe></allow_rule>"
+  fi
+  cat > "$own/permissions.xml" <<XML
+<?xml version="1.0" encoding="utf-8"?>
+<dds xmlns:xsi="http://www.w3.org/2001/XMLSchema-instance"
+     xsi:noNamespaceSchemaLocation="omg_shared_ca_permissions.xsd">
+  <permissions>
+    <grant name="$id">
+      <subject_name>CN=$id,O=flatsat</subject_name>
+      <validity><not_before>$not_before</not_before><not_after>$not_after</not_after></validity>
+      $rules
+      <default>DENY</default>
+    </grant>
+  </permissions>
+</dds>
+XML
+  sign "$own/permissions.xml" "$own/permissions.p7s"
+done
+echo "make-certs.sh: ${#identities[@]} identities in $dir" >&2

@@ -1,0 +1,68 @@
+// SPDX-License-Identifier: Apache-2.0
+// The whole rig with DDS Security on (`flatsat run --secure DIR`, certificates
+// from deploy/security/make-certs.sh): it computes exactly what the open rig
+// computes, and a command reaches it only from a tool holding the operator's
+// certificate.
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+
+#include "tests/support/Background.hpp"
+#include "tests/support/Rig.hpp"
+
+namespace fs = std::filesystem;
+using namespace flatsat;
+
+namespace {
+
+struct Certificates {
+  std::string dir = test::freshDir("certs");
+  Certificates() {
+    const auto made =
+        test::runCommand("bash " FLATSAT_SOURCE_DIR "/deploy/security/make-certs.sh " + dir + " 2>&1");
+    INFO(made.output);
+    REQUIRE(made.exit_code == 0);
+  }
+  ~Certificates() { fs::remove_all(dir); }
+};
+
+const std::string kShortRun = " --set duration_orbits=null --set duration_s=60";
+
+}  // namespace
+
+TEST_CASE("a secured rig records exactly what the open rig records",
+          "[system][security]") {
+  const Certificates certs;
+  const std::string scenario = std::string(FLATSAT_SCENARIO_DIR) + "/default.yaml";
+  const auto open = test::runScenario(scenario, test::freshDir("open"), kShortRun);
+  const auto secured =
+      test::runScenario(scenario, test::freshDir("secured"), kShortRun + " --secure " + certs.dir);
+  CHECK(secured.summary["steps"] == open.summary["steps"]);
+  CHECK(secured.summary["recording_sha256"] == open.summary["recording_sha256"]);
+}
+
+TEST_CASE("a secured rig takes commands only from a tool with the operator's certificate",
+          "[system][security][cmd]") {
+  const Certificates certs;
+  test::exportTestDomain();
+  const std::string run = test::freshDir("secure-cmd");
+  test::Background rig(test::kFlatsat + " run " + std::string(FLATSAT_SCENARIO_DIR) +
+                           "/default.yaml -q --no-plots --out " + run +
+                           " --set mode=paced --set duration_orbits=null --set duration_s=12" +
+                           " --secure " + certs.dir,
+                       run + ".log");
+  REQUIRE(test::waitForText(fs::path(run) / "logs" / "dynamics_server.log",
+                            "every component ready", 120, rig));
+  const std::string fault = test::kFlatsat + " cmd fault gyro bias --magnitude 1e-4 --timeout 4";
+  const auto stranger = test::runCommand(fault + " 2>&1");
+  INFO(stranger.output);
+  CHECK(stranger.exit_code == 1);  // no acknowledgement: nobody heard it
+  const auto operator_cmd = test::runCommand("FLATSAT_SECURE_DIR=" + certs.dir + " " + fault + " 2>&1");
+  INFO(operator_cmd.output);
+  CHECK(operator_cmd.exit_code == 0);
+  CHECK(operator_cmd.output.find("accepted by gyro") != std::string::npos);
+  INFO(test::readFile(run + ".log"));
+  REQUIRE(rig.wait(60) == 0);
+  fs::remove_all(run);
+  fs::remove(run + ".log");
+}
