@@ -208,6 +208,13 @@ void Bus::countDroppedSample(const char* type_name) {
   }
 }
 
+void Bus::countRefusedCommand(const std::string& command, std::uint64_t command_id,
+                              const std::string& reason) {
+  const std::uint64_t n = ++commands_refused_;
+  spdlog::warn("{}: {} command {} refused ({} so far): {}", options_.participant_name, command,
+               command_id, n, reason);
+}
+
 dds::Topic& Bus::topic(const std::string& name, dds::TopicDataType* type) {
   dds::TypeSupport support(type);  // owns `type` from here, also when the topic exists
   std::lock_guard lock(mutex_);

@@ -78,6 +78,12 @@ class Bus {
     return [this](const char* type_name) { countDroppedSample(type_name); };
   }
 
+  /// Commands this participant refused (bus::CommandAcks), for health.
+  std::uint64_t commandsRefused() const { return commands_refused_.load(); }
+  /// Counts and logs (warning) a refused command with its reason.
+  void countRefusedCommand(const std::string& command, std::uint64_t command_id,
+                           const std::string& reason);
+
   /// The topic of that name, registering its type on first use (takes `type`).
   eprosima::fastdds::dds::Topic& topic(const std::string& name,
                                        eprosima::fastdds::dds::TopicDataType* type);
@@ -90,6 +96,7 @@ class Bus {
   std::mutex mutex_;
   std::map<std::string, eprosima::fastdds::dds::Topic*> topics_;
   std::atomic<std::uint64_t> samples_dropped_{0};
+  std::atomic<std::uint64_t> commands_refused_{0};
 };
 
 }  // namespace flatsat::bus

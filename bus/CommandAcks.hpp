@@ -17,11 +17,13 @@ namespace flatsat::bus {
 
 class CommandAcks {
  public:
-  explicit CommandAcks(Bus& bus) : writer_(bus, topics::kCommandAck) {}
+  explicit CommandAcks(Bus& bus) : bus_(bus), writer_(bus, topics::kCommandAck) {}
 
-  /// Thread-safe; `command` is mode, fault or param.
+  /// Thread-safe; `command` is mode, fault or param. A refusal is logged and
+  /// counted in the component's health.
   void queue(std::uint64_t command_id, const std::string& command, bool accepted,
              const std::string& reason) {
+    if (!accepted) bus_.countRefusedCommand(command, command_id, reason);
     msg::CommandAck ack;
     ack.command_id(command_id);
     setText(ack.command(), command);
@@ -45,6 +47,7 @@ class CommandAcks {
   }
 
  private:
+  Bus& bus_;
   std::mutex mutex_;
   std::vector<msg::CommandAck> queued_;
   WriterOf<topics::kCommandAck> writer_;

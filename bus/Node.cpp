@@ -104,6 +104,7 @@ void Node::publishHealth(msg::ComponentState state, std::uint64_t steps_done,
   health.stale_inputs(stale_inputs_);
   health.overruns(overruns_);
   health.samples_dropped(bus_.samplesDropped());
+  health.commands_refused(bus_.commandsRefused());
   health.wall_time_ns(static_cast<std::uint64_t>(
       std::chrono::duration_cast<std::chrono::nanoseconds>(
           std::chrono::system_clock::now().time_since_epoch())

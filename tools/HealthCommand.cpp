@@ -68,6 +68,7 @@ nlohmann::ordered_json table(const std::map<std::string, Entry>& entries, const 
                     {"overruns", overruns(e.health)},
                     {"stale_inputs", staleInputs(e.health)},
                     {"samples_dropped", e.health.samples_dropped()},
+                    {"commands_refused", e.health.commands_refused()},
                     {"age_s", ageSeconds(e.health)},
                     {"alive", p != participants.end() && p->second.alive},
                     {"message", bus::text(e.health.message())}});
@@ -76,17 +77,18 @@ nlohmann::ordered_json table(const std::map<std::string, Entry>& entries, const 
 }
 
 void printTable(const nlohmann::ordered_json& rows, std::uint32_t domain) {
-  std::printf("%-22s %-14s %10s %9s %6s %8s %8s  %s\n", "COMPONENT", "STATE", "STEPS", "OVERRUNS",
-              "STALE", "DROPPED", "AGE [s]", "MESSAGE");
+  std::printf("%-22s %-14s %10s %9s %6s %8s %8s %8s  %s\n", "COMPONENT", "STATE", "STEPS",
+              "OVERRUNS", "STALE", "DROPPED", "REFUSED", "AGE [s]", "MESSAGE");
   for (const auto& r : rows) {
     std::string state = r["state"].is_string() ? r["state"].get<std::string>() : r["state"].dump();
     if (!r["alive"].get<bool>()) state += " (gone)";
-    std::printf("%-22s %-14s %10llu %9llu %6llu %8llu %8.1f  %s\n",
+    std::printf("%-22s %-14s %10llu %9llu %6llu %8llu %8llu %8.1f  %s\n",
                 r["component"].get<std::string>().c_str(), state.c_str(),
                 static_cast<unsigned long long>(r["steps_done"].get<std::uint64_t>()),
                 static_cast<unsigned long long>(r["overruns"].get<std::uint64_t>()),
                 static_cast<unsigned long long>(r["stale_inputs"].get<std::uint64_t>()),
                 static_cast<unsigned long long>(r["samples_dropped"].get<std::uint64_t>()),
+                static_cast<unsigned long long>(r["commands_refused"].get<std::uint64_t>()),
                 r["age_s"].get<double>(), r["message"].get<std::string>().c_str());
   }
   std::printf("%zu components on domain %u\n", rows.size(), domain);

@@ -104,12 +104,14 @@ nlohmann::ordered_json summarize(const bus::Scenario& scenario, const std::strin
   s["wheel_commands_late"] = late_commands;
   std::map<std::string, std::pair<std::uint64_t, std::uint64_t>> lateness;  // stale, overruns
   nlohmann::ordered_json dropped = nlohmann::ordered_json::object();  // last count by component
+  std::map<std::string, std::uint64_t> refused;                     // last count by component
   using HealthDef = std::remove_cvref_t<decltype(bus::topics::kHealth)>;
   recording.forEach(std::string(bus::topics::kHealth.name),
                     [&](std::uint64_t, const std::string& source, const std::vector<std::uint8_t>& bytes) {
                       const auto health = bus::deserialize<HealthDef>(bytes);
                       lateness[source] = {health.stale_inputs(), health.overruns()};
                       dropped[source] = health.samples_dropped();
+                      refused[source] = health.commands_refused();
                     });
   std::uint64_t stale = 0, overruns = 0;
   for (const auto& [component, counts] : lateness) {
@@ -164,6 +166,9 @@ nlohmann::ordered_json summarize(const bus::Scenario& scenario, const std::strin
   for (const auto& [component, count] : dropped.items()) dropped_total += count.get<std::uint64_t>();
   s["samples_dropped"] = dropped_total;
   s["samples_dropped_by_component"] = dropped;
+  std::uint64_t refused_total = 0;  // mode, fault and parameter commands refused with a reason
+  for (const auto& [component, count] : refused) refused_total += count;
+  s["commands_refused"] = refused_total;
   addS0Metrics(s, scenario, recording);
   summarizeMagnetic(scenario, recording, s);
   summarizeEstimator(scenario, recording, s);

@@ -58,8 +58,6 @@ class EmulatorNode final : public bus::Component {
     SensorFault fault;
     const auto problems = toSensorFault(command, kChannels, fault);
     if (!problems.empty()) {
-      spdlog::warn("{}: fault command from {} refused: {}", name(),
-                   bus::text(command.header().source()), problems.front());
       acks_.queue(command.command_id(), "fault", false, problems.front());
       return;
     }
@@ -75,7 +73,6 @@ class EmulatorNode final : public bus::Component {
     }
     for (const auto& [fault, id] : pending) {
       if (!faults_.add(fault)) {
-        spdlog::warn("{}: fault table full, command dropped", name());
         acks_.queue(id, "fault", false, "fault table full");
       } else {
         acks_.queue(id, "fault", true,

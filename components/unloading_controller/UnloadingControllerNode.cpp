@@ -92,7 +92,6 @@ void UnloadingControllerNode::receive(const msg::ModeCmd& command) {
   const auto mode = commandedMode(command);
   if (!mode) {
     const auto value = static_cast<std::int64_t>(command.mode());
-    spdlog::warn("{}: mode command {} from {} refused", name(), value, bus::text(command.header().source()));
     acks_.queue(command.command_id(), "mode", false,
                 "mode " + std::to_string(value) + " is not unload, detumble or spin_capture");
     return;

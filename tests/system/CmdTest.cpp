@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <sstream>
 
@@ -72,6 +73,9 @@ TEST_CASE("cmd sends mode, fault and parameter commands that the components ackn
 
   INFO(test::readFile(run + ".log"));
   REQUIRE(rig.wait(90) == 0);
+  nlohmann::json summary;
+  std::ifstream(fs::path(run) / "summary.json") >> summary;
+  CHECK(summary["commands_refused"] == 1);  // the negative gain, counted in the controller's health
   const fs::path out = fs::path(run) / "export";
   const auto exporting = test::runCommand(
       test::kFlatsat + " export " + run + "/recording.sqlite --json -o " + out.string() +
