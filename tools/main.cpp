@@ -19,6 +19,7 @@
 #include "components/Registry.hpp"
 #include "tools/FieldCommand.hpp"
 #include "tools/CmdCommand.hpp"
+#include "tools/Composed.hpp"
 #include "tools/EchoCommand.hpp"
 #include "tools/ExportCommand.hpp"
 #include "tools/HealthCommand.hpp"
@@ -69,6 +70,7 @@ struct RunOptions {
   bool quiet = false;
   bool json = false;
   bool plots = true;  // the review figures into <run>/plots (flatsat plot)
+  bool composed = false;  // every component in this process, in-process bus (tools/Composed.hpp)
 };
 
 /// `--prefix COMPONENT=COMMAND` into component -> argv words. `*` stands
@@ -107,6 +109,11 @@ int run(const RunOptions& o, nlohmann::ordered_json* summary_out = nullptr) {
     std::cerr << "error: " << run_dir << " already holds a recording; choose another --out\n";
     return kExitBadInput;
   }
+  if (o.composed && !o.prefixes.empty()) {
+    std::cerr << "error: --prefix: a composed run starts no processes to prefix\n";
+    return kExitBadInput;
+  }
+  const bool new_run_dir = !fs::exists(run_dir);
   bus::Scenario scenario;
   try {
     auto overrides = o.overrides;
@@ -117,20 +124,33 @@ int run(const RunOptions& o, nlohmann::ordered_json* summary_out = nullptr) {
     std::cerr << "error: " << e.what() << "\n";
     return kExitBadInput;
   }
+  if (const auto problems = o.composed ? tools::composedProblems(scenario) : std::vector<std::string>{};
+      !problems.empty()) {
+    std::cerr << "error: " << o.scenario << ": cannot run composed (--composed):\n";
+    for (const auto& p : problems) std::cerr << "  " << p << "\n";
+    if (new_run_dir) fs::remove_all(run_dir);
+    return kExitBadInput;
+  }
   const std::string bin_dir = fs::canonical("/proc/self/exe").parent_path().string();
   tools::LaunchOptions launch_options{bin_dir, run_dir, fs::absolute(scenario.file).string(),
                                       o.log_level, !o.quiet};
   if (!parsePrefixes(o.prefixes, scenario, launch_options.prefixes)) return kExitBadInput;
-  // Segments left by processes killed in an earlier run go first.
-  tools::cleanStaleSharedMemory(tools::kShmGrace);
-  if (!o.quiet) {
-    std::cerr << "flatsat: running '" << scenario.name << "' (" << scenario.components.size()
-              << " processes, domain " << bus::domainFromEnvironment(scenario.domain_id)
-              << ") into " << run_dir << "\n";
+  if (o.composed && !o.quiet) {
+    std::cerr << "flatsat: running '" << scenario.name << "' composed (" << scenario.components.size()
+              << " components in this process, no DDS) into " << run_dir << "\n";
+  } else if (!o.composed) {
+    // Segments left by processes killed in an earlier run go first.
+    tools::cleanStaleSharedMemory(tools::kShmGrace);
+    if (!o.quiet) {
+      std::cerr << "flatsat: running '" << scenario.name << "' (" << scenario.components.size()
+                << " processes, domain " << bus::domainFromEnvironment(scenario.domain_id)
+                << ") into " << run_dir << "\n";
+    }
   }
   tools::LaunchResult result;
   try {
-    result = tools::launch(scenario, launch_options);
+    result = o.composed ? tools::runComposed(scenario, launch_options)
+                        : tools::launch(scenario, launch_options);
   } catch (const std::exception& e) {  // the launcher's own participant (FLATSAT_PEERS, ...)
     std::cerr << "error: " << e.what() << "\n";
     return kExitFailed;
@@ -216,6 +236,9 @@ int main(int argc, char** argv) {
   run_cmd->add_flag("--json", run_options.json, "print the summary as JSON");
   run_cmd->add_flag("!--no-plots", run_options.plots,
                     "skip the review figures (default: flatsat plot into <run>/plots)");
+  run_cmd->add_flag("--composed", run_options.composed,
+                    "every component in this one process on an in-process bus (no DDS), "
+                    "scheduled in data-flow order: same recording, much faster; lockstep only");
   run_cmd->add_option("--seed", run_options.seed, "scenario seed: dispersed initial conditions and noise");
   run_cmd->add_option("--prefix", run_options.prefixes,
                       "COMPONENT=COMMAND: start that component under COMMAND (split at spaces), "
