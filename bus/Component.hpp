@@ -19,9 +19,9 @@ class Component : public Node {
   void run();
 
   // The same protocol driven by a composed rig's scheduler on one thread
-  // (bus/Composed.hpp): start(), then turn() whenever a grant may be
-  // pending, finish() after the stop grant. None of them blocks on an
-  // in-process bus whose waits have zero timeouts.
+  // (bus/Composed.hpp), lockstep only: start(), then turn() whenever a
+  // grant may be pending, finish() after the stop grant. None of them
+  // blocks on an in-process bus whose waits have zero timeouts.
 
   /// Producers and time master matched -> READY.
   void start();

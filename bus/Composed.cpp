@@ -48,28 +48,27 @@ void ComposedScheduler::run(const std::function<void(std::uint64_t)>& after_step
 void ComposedScheduler::runStep(std::uint64_t k) {
   on(master_, [this, k] { master_.beginStep(k); });
   // Every component holds this step's grant; each takes exactly one turn.
-  std::vector<Component*> went;
-  went.reserve(order_.size());
-  std::vector<bool> done(order_.size(), false);
-  while (went.size() < order_.size()) {
-    const std::size_t before = went.size();
+  went_.clear();
+  done_.assign(order_.size(), false);
+  while (went_.size() < order_.size()) {
+    const std::size_t before = went_.size();
     std::string blocked;
     for (std::size_t i = 0; i < order_.size(); ++i) {
-      if (done[i]) continue;
+      if (done_[i]) continue;
       Component* c = order_[i];
       const auto turn = on(*c, [c] { return c->turn(); });
       if (turn == Component::Turn::kStepped) {
-        done[i] = true;
-        went.push_back(c);
+        done_[i] = true;
+        went_.push_back(c);
       } else {
         blocked += " " + c->name() + (turn == Component::Turn::kBlocked ? " (inputs)" : " (no grant)");
       }
     }
-    if (went.size() == before) {
+    if (went_.size() == before) {
       throw NodeFailure("step " + std::to_string(k) + ": no component can go on:" + blocked);
     }
   }
-  order_ = std::move(went);
+  order_.swap(went_);
   on(master_, [this, k] { master_.endStep(k); });
 }
 

@@ -35,6 +35,8 @@ class ComposedScheduler {
 
   TimeMaster& master_;
   std::vector<Component*> order_;
+  std::vector<Component*> went_;  // this step's turns, in the order taken
+  std::vector<bool> done_;        // by index into order_: took its turn this step
 };
 
 }  // namespace flatsat::bus
