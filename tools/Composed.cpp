@@ -46,18 +46,17 @@ class ComposedLog {
 std::vector<std::string> composedProblems(const bus::Scenario& scenario) {
   std::vector<std::string> problems;
   if (scenario.pacing == bus::Pacing::kPaced) {
-    problems.push_back(scenario.file +
-                       ": mode: paced: a composed rig runs lockstep only (paced steps follow "
+    problems.push_back("mode: paced: a composed rig runs lockstep only (paced steps follow "
                        "the wall clock, which needs every component its own process)");
   }
   for (const auto& c : scenario.components) {
     const ComponentKind* kind = findComponentKind(c.name);
     if (!c.launched) {
-      problems.push_back(scenario.file + ": components." + c.name +
+      problems.push_back("components." + c.name +
                          ": role: external: it runs outside the rig and meets it over DDS, "
                          "which a composed rig does not open");
     } else if (kind != nullptr && !kind->make) {
-      problems.push_back(scenario.file + ": components." + c.name + ": " + kind->not_composable +
+      problems.push_back("components." + c.name + ": " + kind->not_composable +
                          "; it needs its own process (run without --composed)");
     }
   }

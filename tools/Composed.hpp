@@ -9,7 +9,7 @@
 namespace flatsat::tools {
 
 /// Why the scenario cannot run composed, one line per component or key
-/// ("file: key: reason"); empty when it can. A composed rig is lockstep,
+/// ("key: reason"); empty when it can. A composed rig is lockstep,
 /// and holds only components that need no DDS peer and no wall clock.
 std::vector<std::string> composedProblems(const bus::Scenario& scenario);
 

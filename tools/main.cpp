@@ -128,7 +128,7 @@ int run(const RunOptions& o, nlohmann::ordered_json* summary_out = nullptr) {
   if (const auto problems = o.composed ? tools::composedProblems(scenario) : std::vector<std::string>{};
       !problems.empty()) {
     std::cerr << "error: " << o.scenario << ": cannot run composed (--composed):\n";
-    for (const auto& p : problems) std::cerr << "  " << p << "\n";
+    for (const auto& p : problems) std::cerr << "  " << o.scenario << ": " << p << "\n";
     if (new_run_dir) fs::remove_all(run_dir);
     return kExitBadInput;
   }

@@ -119,4 +119,11 @@ TEST_CASE("a scenario a composed rig cannot hold is refused, naming the componen
   CHECK(lockstep.output.find("mode: paced") == std::string::npos);
   CHECK(lockstep.output.find("components.magnetometer_bridge") != std::string::npos);
   CHECK_FALSE(fs::exists(out));
+
+  const auto external = test::runCommand(test::kFlatsat + " run " + kDefault +
+                                         " --composed -q --no-plots --set components.gyro.role=external --out " + out);
+  INFO(external.output);
+  CHECK(external.exit_code == 2);
+  CHECK(external.output.find("default.yaml: components.gyro: role: external") != std::string::npos);
+  CHECK_FALSE(fs::exists(out));
 }
