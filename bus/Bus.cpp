@@ -193,7 +193,10 @@ Bus::Bus(const BusOptions& options) : options_(options) {
   subscriber_ = participant_->create_subscriber(dds::SUBSCRIBER_QOS_DEFAULT);
 }
 
+Bus::Bus(const BusOptions& options, LocalHub& hub) : options_(options), hub_(&hub) {}
+
 Bus::~Bus() {
+  if (participant_ == nullptr) return;  // in-process
   participant_->delete_contained_entities();
   dds::DomainParticipantFactory::get_instance()->delete_participant(participant_);
 }
@@ -218,6 +221,7 @@ void Bus::countRefusedCommand(const std::string& command, std::uint64_t command_
 dds::Topic& Bus::topic(const std::string& name, dds::TopicDataType* type) {
   dds::TypeSupport support(type);  // owns `type` from here, also when the topic exists
   std::lock_guard lock(mutex_);
+  ddsEntity(participant_);
   if (auto it = topics_.find(name); it != topics_.end()) return *it->second;
   support.register_type(participant_);
   dds::Topic* topic = participant_->create_topic(name, support.get_type_name(),

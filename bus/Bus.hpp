@@ -6,6 +6,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,8 @@
 #include "bus/Qos.hpp"
 
 namespace flatsat::bus {
+
+class LocalHub;
 
 /// Which network a participant may use.
 enum class NetworkProfile {
@@ -56,16 +59,23 @@ BusNetwork networkFromEnvironment();
 
 /// One DDS participant with one publisher and one subscriber; topics are
 /// created once per name and shared by every endpoint of the process.
+/// Or, in a composed rig, an in-process bus: the endpoints go to a LocalHub
+/// and no participant exists (nothing on the network or in /dev/shm).
 class Bus {
  public:
   explicit Bus(const BusOptions& options);
+  /// In-process: domain and network in `options` are unused; `hub` outlives the bus.
+  Bus(const BusOptions& options, LocalHub& hub);
   ~Bus();
   Bus(const Bus&) = delete;
   Bus& operator=(const Bus&) = delete;
 
-  eprosima::fastdds::dds::DomainParticipant& participant() { return *participant_; }
-  eprosima::fastdds::dds::Publisher& publisher() { return *publisher_; }
-  eprosima::fastdds::dds::Subscriber& subscriber() { return *subscriber_; }
+  /// The hub of an in-process bus; null for a DDS bus.
+  LocalHub* localHub() const { return hub_; }
+  /// The DDS entities; throw std::logic_error on an in-process bus.
+  eprosima::fastdds::dds::DomainParticipant& participant() { return *ddsEntity(participant_); }
+  eprosima::fastdds::dds::Publisher& publisher() { return *ddsEntity(publisher_); }
+  eprosima::fastdds::dds::Subscriber& subscriber() { return *ddsEntity(subscriber_); }
   std::uint32_t domainId() const { return options_.domain_id; }
   const QosTuning& tuning() const { return options_.tuning; }
 
@@ -89,7 +99,16 @@ class Bus {
                                        eprosima::fastdds::dds::TopicDataType* type);
 
  private:
+  template <class Entity>
+  Entity* ddsEntity(Entity* entity) const {
+    if (hub_ != nullptr) {
+      throw std::logic_error(options_.participant_name + ": an in-process bus has no DDS participant");
+    }
+    return entity;
+  }
+
   BusOptions options_;
+  LocalHub* hub_ = nullptr;
   eprosima::fastdds::dds::DomainParticipant* participant_ = nullptr;
   eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
   eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;

@@ -19,44 +19,69 @@ Component::Component(Bus& bus, NodeOptions options)
 
 void Component::run() {
   try {
-    waitForProducers();
-    waitUntilNothingMissing(
-        [this] { return grant_reader_.matchedWriters() == 0 ? " " + grant_reader_.topicName() : ""; },
-        "waiting for the time master");
-    publishHealth(msg::ComponentState::READY, 0, "all producers matched");
-    spdlog::info("{}: ready (divider {})", name(), dividerOf(name()));
+    start();
     loop();
-    flushOutputs();
-    done_.waitForAcknowledgments(std::chrono::seconds(5));
-    publishHealth(msg::ComponentState::STOPPED, steps_done_, "run complete");
-    spdlog::info("{}: stopped after {} steps", name(), steps_done_);
+    finish();
   } catch (const NodeFailure& failure) {
     publishHealth(msg::ComponentState::FAILED, steps_done_, failure.what());
     throw;
   }
 }
 
+void Component::start() {
+  waitForProducers();
+  waitUntilNothingMissing(
+      [this] { return grant_reader_.matchedWriters() == 0 ? " " + grant_reader_.topicName() : ""; },
+      "waiting for the time master");
+  divider_ = dividerOf(name());
+  publishHealth(msg::ComponentState::READY, 0, "all producers matched");
+  spdlog::info("{}: ready (divider {})", name(), divider_);
+  next_health_ = std::chrono::steady_clock::now() + kHealthPeriod;
+}
+
+void Component::finish() {
+  flushOutputs();
+  done_.waitForAcknowledgments(std::chrono::seconds(5));
+  publishHealth(msg::ComponentState::STOPPED, steps_done_, "run complete");
+  spdlog::info("{}: stopped after {} steps", name(), steps_done_);
+}
+
 void Component::loop() {
-  const std::uint32_t divider = dividerOf(name());
-  auto next_health = std::chrono::steady_clock::now() + kHealthPeriod;
-  for (;;) {
-    const msg::StepGrant grant = nextGrant();
-    if (grant.stop()) return;
-    const StepContext ctx{grant.header().step(), grant.header().sim_time_ns(),
-                          grant.step_period_ns()};
-    if (ctx.step % divider == 0 && waitForInputs(ctx.step)) {
-      step(ctx);
-      msg::StepDone done;
-      done.header(makeHeader(ctx, name()));
-      done_.write(done);
-      ++steps_done_;
-    }
-    dropInputsBefore(ctx.step);
-    if (std::chrono::steady_clock::now() > next_health) {
-      publishHealth(msg::ComponentState::RUNNING, steps_done_, status_);
-      next_health += kHealthPeriod;
-    }
+  while (handle(nextGrant())) {
   }
+}
+
+Component::Turn Component::turn() {
+  msg::StepGrant grant;
+  {
+    std::lock_guard lock(mutex_);
+    if (grants_.empty()) return Turn::kIdle;
+    const msg::StepGrant& front = grants_.front();
+    const std::uint64_t k = front.header().step();
+    if (!front.stop() && k % divider_ == 0 && !inputsIn(k)) return Turn::kBlocked;
+    grant = front;
+    grants_.pop_front();
+  }
+  return handle(grant) ? Turn::kStepped : Turn::kStopped;
+}
+
+bool Component::handle(const msg::StepGrant& grant) {
+  if (grant.stop()) return false;
+  const StepContext ctx{grant.header().step(), grant.header().sim_time_ns(),
+                        grant.step_period_ns()};
+  if (ctx.step % divider_ == 0 && waitForInputs(ctx.step)) {
+    step(ctx);
+    msg::StepDone done;
+    done.header(makeHeader(ctx, name()));
+    done_.write(done);
+    ++steps_done_;
+  }
+  dropInputsBefore(ctx.step);
+  if (std::chrono::steady_clock::now() > next_health_) {
+    publishHealth(msg::ComponentState::RUNNING, steps_done_, status_);
+    next_health_ += kHealthPeriod;
+  }
+  return true;
 }
 
 void Component::setStatus(const std::string& status) {

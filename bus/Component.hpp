@@ -18,6 +18,24 @@ class Component : public Node {
   /// NodeFailure (after publishing FAILED health) when it gives up.
   void run();
 
+  // The same protocol driven by a composed rig's scheduler on one thread
+  // (bus/Composed.hpp), lockstep only: start(), then turn() whenever a
+  // grant may be pending, finish() after the stop grant. None of them
+  // blocks on an in-process bus whose waits have zero timeouts.
+
+  /// Producers and time master matched -> READY.
+  void start();
+  enum class Turn {
+    kIdle,     ///< no grant pending
+    kBlocked,  ///< the oldest pending grant's inputs are not all in yet
+    kStepped,  ///< handled one grant (stepped when due)
+    kStopped,  ///< took the stop grant
+  };
+  /// Handles the oldest pending grant when its inputs are in.
+  Turn turn();
+  /// Outputs flushed -> STOPPED.
+  void finish();
+
  protected:
   /// One step; called with every input ready for ctx.step.
   virtual void step(const StepContext& ctx) = 0;
@@ -28,7 +46,11 @@ class Component : public Node {
 
  private:
   void loop();
+  /// One grant: steps when due; false for the stop grant.
+  bool handle(const msg::StepGrant& grant);
   msg::StepGrant nextGrant();
+  std::chrono::steady_clock::time_point next_health_;
+  std::uint32_t divider_ = 1;  // this component's, from the schedule at start()
   std::deque<msg::StepGrant> grants_;
   ReaderOf<topics::kStepGrant> grant_reader_;
   WriterOf<topics::kStepDone> done_;

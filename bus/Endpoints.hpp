@@ -13,38 +13,58 @@
 
 #include "bus/Bus.hpp"
 #include "bus/GuardedType.hpp"
+#include "bus/LocalHub.hpp"
 #include "bus/Qos.hpp"
 
 namespace flatsat::bus {
 
-/// Typed writer for one registry topic.
+/// Typed writer for one registry topic: a DDS DataWriter, or on an
+/// in-process bus (composed rig) a writer of the hub's channel.
 template <class Def>
 class Writer {
  public:
   using Sample = typename Def::Type;
 
-  Writer(Bus& bus, const Def& def) : name_(def.name), publisher_(bus.publisher()) {
+  Writer(Bus& bus, const Def& def) : name_(def.name) {
+    if (LocalHub* hub = bus.localHub()) {
+      local_ = &hub->channel(def);
+      local_id_ = local_->addWriter();
+      return;
+    }
+    publisher_ = &bus.publisher();
     auto& topic = bus.topic(std::string(def.name),
                             new GuardedType<typename Def::PubSubType>(bus.dropCounter()));
-    writer_ = publisher_.create_datawriter(&topic, writerQos(def.qos, bus.tuning()));
+    writer_ = publisher_->create_datawriter(&topic, writerQos(def.qos, bus.tuning()));
     if (writer_ == nullptr) throw std::runtime_error("could not create a writer on " + name_);
   }
-  ~Writer() { publisher_.delete_datawriter(writer_); }
+  ~Writer() {
+    if (local_ != nullptr) local_->removeWriter(local_id_);
+    else publisher_->delete_datawriter(writer_);
+  }
   Writer(const Writer&) = delete;
   Writer& operator=(const Writer&) = delete;
 
   void write(const Sample& sample) {
+    if (local_ != nullptr) {
+      local_->write(local_id_, sample);
+      return;
+    }
     if (!writer_->write(const_cast<Sample*>(&sample))) {
       throw std::runtime_error("write failed on topic " + name_);
     }
   }
   int matchedReaders() const {
+    if (local_ != nullptr) return local_->readers();
     eprosima::fastdds::dds::PublicationMatchedStatus status;
     writer_->get_publication_matched_status(status);
     return status.current_count;
   }
   /// The participants (GUID prefixes) of the readers matched now.
+  /// In-process there are no participants: throws std::logic_error.
   std::vector<eprosima::fastrtps::rtps::GuidPrefix_t> matchedReaderParticipants() const {
+    if (local_ != nullptr) {
+      throw std::logic_error(name_ + ": an in-process writer has no participants to list");
+    }
     std::vector<eprosima::fastdds::dds::InstanceHandle_t> handles;
     writer_->get_matched_subscriptions(handles);
     std::vector<eprosima::fastrtps::rtps::GuidPrefix_t> prefixes;
@@ -55,8 +75,10 @@ class Writer {
     }
     return prefixes;
   }
-  /// Blocks until every matched reader acknowledged what was written.
+  /// Blocks until every matched reader acknowledged what was written
+  /// (in-process: at once, a write returns once every reader has the sample).
   bool waitForAcknowledgments(std::chrono::milliseconds timeout) {
+    if (local_ != nullptr) return true;
     const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(timeout).count();
     return writer_->wait_for_acknowledgments(
                eprosima::fastrtps::Duration_t(static_cast<int32_t>(ns / 1000000000),
@@ -67,13 +89,16 @@ class Writer {
 
  private:
   std::string name_;
-  eprosima::fastdds::dds::Publisher& publisher_;
+  eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
   eprosima::fastdds::dds::DataWriter* writer_ = nullptr;
+  LocalChannel<Def>* local_ = nullptr;
+  std::size_t local_id_ = 0;
 };
 
 /// Typed reader for one registry topic; every valid sample is handed to a
 /// callback on a Fast DDS thread. A sample that does not decode is dropped
-/// and counted in the bus (GuardedType).
+/// and counted in the bus (GuardedType). On an in-process bus the callback
+/// runs on the writer's thread, inside its write.
 template <class Def>
 class Reader : private eprosima::fastdds::dds::DataReaderListener {
  public:
@@ -81,20 +106,31 @@ class Reader : private eprosima::fastdds::dds::DataReaderListener {
   using Callback = std::function<void(const Sample&)>;
 
   Reader(Bus& bus, const Def& def, Callback on_sample)
-      : name_(def.name), on_sample_(std::move(on_sample)), subscriber_(bus.subscriber()) {
+      : name_(def.name), on_sample_(std::move(on_sample)) {
+    if (LocalHub* hub = bus.localHub()) {
+      local_ = &hub->channel(def);
+      local_id_ = local_->addReader(&on_sample_);
+      return;
+    }
+    subscriber_ = &bus.subscriber();
     auto& topic = bus.topic(std::string(def.name),
                             new GuardedType<typename Def::PubSubType>(bus.dropCounter()));
-    reader_ = subscriber_.create_datareader(&topic, readerQos(def.qos, bus.tuning()), this);
+    reader_ = subscriber_->create_datareader(&topic, readerQos(def.qos, bus.tuning()), this);
     if (reader_ == nullptr) throw std::runtime_error("could not create a reader on " + name_);
   }
   ~Reader() {
+    if (local_ != nullptr) {
+      local_->removeReader(local_id_);
+      return;
+    }
     reader_->set_listener(nullptr);
-    subscriber_.delete_datareader(reader_);
+    subscriber_->delete_datareader(reader_);
   }
   Reader(const Reader&) = delete;
   Reader& operator=(const Reader&) = delete;
 
   int matchedWriters() const {
+    if (local_ != nullptr) return local_->writers();
     eprosima::fastdds::dds::SubscriptionMatchedStatus status;
     reader_->get_subscription_matched_status(status);
     return status.current_count;
@@ -112,8 +148,10 @@ class Reader : private eprosima::fastdds::dds::DataReaderListener {
 
   std::string name_;
   Callback on_sample_;
-  eprosima::fastdds::dds::Subscriber& subscriber_;
+  eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;
   eprosima::fastdds::dds::DataReader* reader_ = nullptr;
+  LocalChannel<Def>* local_ = nullptr;
+  std::size_t local_id_ = 0;
 };
 
 /// Endpoint types of a registry topic: WriterOf<topics::kTruth>, ...

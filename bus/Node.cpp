@@ -50,6 +50,13 @@ void Node::notify() {
   changed_.notify_all();
 }
 
+bool Node::inputsIn(std::uint64_t k) const {
+  for (const auto& input : inputs_) {
+    if (!input->has(k)) return false;
+  }
+  return true;
+}
+
 bool Node::waitForInputs(std::uint64_t k) {
   const auto now = std::chrono::steady_clock::now();
   const auto deadline = now + (paced() ? std::chrono::duration_cast<std::chrono::milliseconds>(

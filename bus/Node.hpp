@@ -158,6 +158,9 @@ class Node {
   /// string; on timeout or shutdown throws NodeFailure with `what` and it.
   template <class Missing>
   void waitUntilNothingMissing(Missing&& missing, const std::string& what);
+  /// Whether every input holds its sample for step k (lockstep's condition), without waiting.
+  /// The caller holds mutex_.
+  bool inputsIn(std::uint64_t k) const;
   /// Lockstep: waits until every input holds its sample for step k.
   /// Paced: waits at most half a period, then goes on with the newest
   /// samples; returns false when an input has none at all yet.

@@ -16,6 +16,8 @@ inline constexpr const char* kScenario = "scenario";            // scenario name
 inline constexpr const char* kSchedule = "schedule";            // "name=divider,..."
 inline constexpr const char* kMode = "mode";                    // lockstep | paced
 inline constexpr const char* kLeaseMs = "liveliness_lease_ms";  // [ms]
+/// [-] only the stepped samples and grants of every Nth step are in (absent: every step)
+inline constexpr const char* kRecordEverySteps = "record_every_steps";
 
 inline std::string formatSchedule(const Schedule& schedule) {
   std::string out;

@@ -98,51 +98,63 @@ void TimeMaster::waitForTick(std::chrono::steady_clock::time_point tick) {
 
 void TimeMaster::run() {
   try {
-    waitForProducers();
-    waitForComponents();
-    publishHealth(msg::ComponentState::RUNNING, 0, "granting steps");
-    spdlog::info("{}: every component ready; running steps 0..{} {}", name(), timing_.final_step,
-                 paced() ? "paced on the wall clock" : "in lockstep");
-    const auto start = std::chrono::steady_clock::now();
-    auto next_health = start + kHealthPeriod;
+    start();
     for (std::uint64_t k = 0; k <= timing_.final_step; ++k) {
-      const StepContext ctx{k, static_cast<std::int64_t>(k) * timing_.period_ns,
-                            timing_.period_ns};
-      publishStep(ctx);
-      msg::StepGrant grant;
-      grant.header(makeHeader(ctx, name()));
-      grant.step_period_ns(timing_.period_ns);
-      grant.final_step(timing_.final_step);
-      grant_.write(grant);
-      if (paced()) {
-        waitForTick(start + std::chrono::nanoseconds(timing_.period_ns) * (k + 1));
-      } else {
-        waitForDone(k);
-        waitForInputs(k);
-      }
-      advance(ctx);
-      dropInputsBefore(k);
-      if (std::chrono::steady_clock::now() > next_health) {  // heartbeat: counts stay current
-        publishHealth(msg::ComponentState::RUNNING, k + 1, "granting steps");
-        next_health += kHealthPeriod;
-      }
+      beginStep(k);
+      endStep(k);
     }
-    const StepContext end{timing_.final_step + 1,
-                          static_cast<std::int64_t>(timing_.final_step + 1) * timing_.period_ns,
-                          timing_.period_ns};
-    msg::StepGrant stop;
-    stop.header(makeHeader(end, name()));
-    stop.step_period_ns(timing_.period_ns);
-    stop.final_step(timing_.final_step);
-    stop.stop(true);
-    grant_.write(stop);
-    flushOutputs();
-    grant_.waitForAcknowledgments(std::chrono::seconds(5));
-    publishHealth(msg::ComponentState::STOPPED, timing_.final_step + 1, "run complete");
+    stop();
   } catch (const NodeFailure& failure) {
     publishHealth(msg::ComponentState::FAILED, 0, failure.what());
     throw;
   }
+}
+
+void TimeMaster::start() {
+  waitForProducers();
+  waitForComponents();
+  publishHealth(msg::ComponentState::RUNNING, 0, "granting steps");
+  spdlog::info("{}: every component ready; running steps 0..{} {}", name(), timing_.final_step,
+               paced() ? "paced on the wall clock" : "in lockstep");
+  start_ = std::chrono::steady_clock::now();
+  next_health_ = start_ + kHealthPeriod;
+}
+
+void TimeMaster::beginStep(std::uint64_t k) {
+  const StepContext ctx = context(k);
+  publishStep(ctx);
+  msg::StepGrant grant;
+  grant.header(makeHeader(ctx, name()));
+  grant.step_period_ns(timing_.period_ns);
+  grant.final_step(timing_.final_step);
+  grant_.write(grant);
+}
+
+void TimeMaster::endStep(std::uint64_t k) {
+  if (paced()) {
+    waitForTick(start_ + std::chrono::nanoseconds(timing_.period_ns) * (k + 1));
+  } else {
+    waitForDone(k);
+    waitForInputs(k);
+  }
+  advance(context(k));
+  dropInputsBefore(k);
+  if (std::chrono::steady_clock::now() > next_health_) {  // heartbeat: counts stay current
+    publishHealth(msg::ComponentState::RUNNING, k + 1, "granting steps");
+    next_health_ += kHealthPeriod;
+  }
+}
+
+void TimeMaster::stop() {
+  msg::StepGrant stop;
+  stop.header(makeHeader(context(timing_.final_step + 1), name()));
+  stop.step_period_ns(timing_.period_ns);
+  stop.final_step(timing_.final_step);
+  stop.stop(true);
+  grant_.write(stop);
+  flushOutputs();
+  grant_.waitForAcknowledgments(std::chrono::seconds(5));
+  publishHealth(msg::ComponentState::STOPPED, timing_.final_step + 1, "run complete");
 }
 
 }  // namespace flatsat::bus

@@ -26,6 +26,20 @@ class TimeMaster : public Node {
   /// component that failed or stalled.
   void run();
 
+  // The same protocol driven by a composed rig's scheduler on one thread
+  // (bus/Composed.hpp): start(), then for each step k beginStep(k), the
+  // components' turns, endStep(k); then stop(). Lockstep only.
+
+  /// Producers matched and every component READY -> RUNNING.
+  void start();
+  /// Publishes step k's data and its grant.
+  void beginStep(std::uint64_t k);
+  /// Waits for step k's StepDone and inputs (paced: the tick), applies them.
+  void endStep(std::uint64_t k);
+  /// The stop grant, flushed -> STOPPED.
+  void stop();
+  std::uint64_t finalStep() const { return timing_.final_step; }
+
  protected:
   /// Publishes what the time master produces for step k (before the grant).
   virtual void publishStep(const StepContext& ctx) = 0;
@@ -39,7 +53,13 @@ class TimeMaster : public Node {
   void waitForTick(std::chrono::steady_clock::time_point tick);
   std::string failedComponents() const;
 
+  StepContext context(std::uint64_t k) const {
+    return {k, static_cast<std::int64_t>(k) * timing_.period_ns, timing_.period_ns};
+  }
+
   Timing timing_;
+  std::chrono::steady_clock::time_point start_;        // of step 0 (paced ticks)
+  std::chrono::steady_clock::time_point next_health_;  // heartbeat
   std::map<std::uint64_t, std::set<std::string>> done_;
   std::map<std::string, msg::ComponentState> states_;
   std::map<std::string, std::string> messages_;

@@ -13,40 +13,67 @@
 #include "components/thruster_sequencer/ThrusterSequencerNode.hpp"
 #include "components/unloading_controller/UnloadingControllerNode.hpp"
 #include "components/wheel_tach/WheelTachNode.hpp"
+#include "sim/DynamicsServerNode.hpp"
 #include "sim/DynamicsServerParams.hpp"
 
 namespace flatsat {
 
 namespace {
 
-template <class Read>
+/// A kind whose node composes: `NodeType(bus, options, read(...))`.
+template <class NodeType, class Read>
 ComponentKind kind(const std::string& name, Read read) {
   return {name, "flatsat-" + name,
           [read](const bus::Scenario& s, const bus::NodeArgs& a, bus::ConfigProblems& p) {
             read(s, a, p);
-          }};
+          },
+          [read](bus::Bus& bus, bus::NodeOptions options, const bus::Scenario& s,
+                 const bus::NodeArgs& a) -> std::unique_ptr<bus::Node> {
+            bus::ConfigProblems problems;
+            auto params = read(s, a, problems);
+            if (!problems.empty()) throw bus::ScenarioError(a.name + ":\n" + problems.joined());
+            return std::make_unique<NodeType>(bus, std::move(options), params);
+          },
+          ""};
+}
+
+/// A kind that only runs as its own process, for `reason`.
+template <class Read>
+ComponentKind processOnly(const std::string& name, Read read, const std::string& reason) {
+  return {name, "flatsat-" + name,
+          [read](const bus::Scenario& s, const bus::NodeArgs& a, bus::ConfigProblems& p) {
+            read(s, a, p);
+          },
+          {}, reason};
 }
 
 }  // namespace
 
 const std::vector<ComponentKind>& componentKinds() {
   static const std::vector<ComponentKind> kinds = {
-      kind("dynamics_server",
-           [](const bus::Scenario& s, const bus::NodeArgs& a, bus::ConfigProblems& p) {
-             return sim::readDynamicsServerParams(s, a.name, p);
-           }),
-      kind("magnetometer", magnetometer::readParams),
-      kind("sun_sensor", sun_sensor::readParams),
-      kind("gyro", gyro::readParams),
-      kind("wheel_tach", wheel_tach::readParams),
-      kind("estimator", estimator::readParams),
-      kind("attitude_controller", attitude_controller::readParams),
-      kind("unloading_controller", unloading_controller::readParams),
-      kind("recorder", recorder::readParams),
-      kind("magnetometer_bridge", magnetometer_bridge::readParams),
-      kind("magnetometer_device", magnetometer_device::readParams),
-      kind("thruster_sequencer", thruster_sequencer::readParams),
-      kind("star_tracker", star_tracker::readParams),
+      kind<sim::DynamicsServerNode>(
+          "dynamics_server",
+          [](const bus::Scenario& s, const bus::NodeArgs& a, bus::ConfigProblems& p) {
+            return sim::readDynamicsServerParams(s, a.name, p);
+          }),
+      kind<magnetometer::MagnetometerNode>("magnetometer", magnetometer::readParams),
+      kind<sun_sensor::SunSensorNode>("sun_sensor", sun_sensor::readParams),
+      kind<gyro::GyroNode>("gyro", gyro::readParams),
+      kind<wheel_tach::WheelTachNode>("wheel_tach", wheel_tach::readParams),
+      kind<estimator::EstimatorNode>("estimator", estimator::readParams),
+      kind<attitude_controller::AttitudeControllerNode>("attitude_controller",
+                                                        attitude_controller::readParams),
+      kind<unloading_controller::UnloadingControllerNode>("unloading_controller",
+                                                          unloading_controller::readParams),
+      kind<recorder::RecorderNode>("recorder", recorder::readParams),
+      processOnly("magnetometer_bridge", magnetometer_bridge::readParams,
+                  "a hardware bridge: it publishes as its serial device delivers, on the wall "
+                  "clock, over the emulator at a higher DDS ownership strength"),
+      processOnly("magnetometer_device", magnetometer_device::readParams,
+                  "a device stand-in: it plays a real unit on a pseudo-terminal, on the wall clock"),
+      kind<thruster_sequencer::ThrusterSequencerNode>("thruster_sequencer",
+                                                      thruster_sequencer::readParams),
+      kind<star_tracker::StarTrackerNode>("star_tracker", star_tracker::readParams),
   };
   return kinds;
 }

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #pragma once
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,12 @@ struct ComponentKind {
   std::string executable;  ///< flatsat-<name>, next to the flatsat tool
   /// Reads the component's parameters, reporting every problem.
   std::function<void(const bus::Scenario&, const bus::NodeArgs&, bus::ConfigProblems&)> check;
+  /// Builds the node on a bus of this process (a composed rig) with `options`;
+  /// empty when the kind cannot be composed (see not_composable).
+  std::function<std::unique_ptr<bus::Node>(bus::Bus&, bus::NodeOptions, const bus::Scenario&,
+                                           const bus::NodeArgs&)>
+      make;
+  std::string not_composable;  ///< why a composed rig cannot hold it (empty: it can)
 };
 
 const std::vector<ComponentKind>& componentKinds();

@@ -26,6 +26,7 @@
 #include "bus/NodeMain.hpp"
 #include "bus/Security.hpp"
 #include "components/Registry.hpp"
+#include "tools/Progress.hpp"
 
 extern char** environ;
 
@@ -99,57 +100,6 @@ void stopAll(std::vector<Child>& children) {
     }
   }
 }
-
-/// Follows the grants to show progress and time the stepping.
-class Progress {
- public:
-  Progress(bus::Bus& bus, bool show)
-      : show_(show), terminal_(::isatty(STDERR_FILENO) == 1), reader_(bus, bus::topics::kStepGrant, [this](const msg::StepGrant& g) {
-          if (g.stop()) return;
-          if (steps_.load() == 0) first_ = Clock::now();
-          last_ = Clock::now();
-          final_step_ = g.final_step();
-          period_ns_ = g.step_period_ns();
-          steps_.store(g.header().step() + 1);
-        }) {}
-
-  void print(bool done) {
-    if (!show_) return;
-    const std::uint64_t steps = steps_.load();
-    if (steps == 0) {
-      if (terminal_) std::fprintf(stderr, "\r  waiting for every component to be ready...");
-      return;
-    }
-    const double wall = std::chrono::duration<double>(last_.load() - first_.load()).count();
-    const double sim = static_cast<double>(steps) * static_cast<double>(period_ns_) * 1e-9;
-    const double total = static_cast<double>(final_step_ + 1) * static_cast<double>(period_ns_) * 1e-9;
-    const double rate = wall > 0 ? static_cast<double>(steps) / wall : 0.0;
-    const double eta = rate > 0 ? static_cast<double>(final_step_ + 1 - steps) / rate : 0.0;
-    // A log file gets one line per tenth of the run instead of a live line.
-    const int tenth = static_cast<int>(10 * steps / (final_step_ + 1));
-    if (!terminal_ && !done && tenth == last_tenth_) return;
-    last_tenth_ = tenth;
-    std::fprintf(stderr, "%s  sim %9.1f / %.1f s  step %llu/%llu  %7.0f steps/s  x%-7.1f eta %5.0f s%s",
-                 terminal_ ? "\r" : "", sim, total, static_cast<unsigned long long>(steps),
-                 static_cast<unsigned long long>(final_step_ + 1), rate,
-                 wall > 0 ? sim / wall : 0.0, eta, (done || !terminal_) ? "\n" : "   ");
-  }
-  std::uint64_t steps() const { return steps_.load(); }
-  double stepSeconds() const {
-    return steps_.load() == 0 ? 0.0
-                              : std::chrono::duration<double>(last_.load() - first_.load()).count();
-  }
-
- private:
-  bool show_;
-  bool terminal_;
-  int last_tenth_ = -1;
-  std::atomic<std::uint64_t> steps_{0};
-  std::atomic<Clock::time_point> first_{}, last_{};
-  std::atomic<std::uint64_t> final_step_{0};
-  std::atomic<std::int64_t> period_ns_{0};
-  bus::ReaderOf<bus::topics::kStepGrant> reader_;
-};
 
 /// Notes when each external component first shows up on the health topic.
 class Joins {

@@ -156,6 +156,11 @@ int replay(const ReplayOptions& o) {
     return 2;
   }
   const bus::Recording recording(o.recording, bus::Recording::Access::kRead);
+  if (const auto every = recording.meta(bus::meta::kRecordEverySteps); !every.empty()) {
+    std::cerr << "error: " << o.recording << ": recorded every " << every
+              << " steps only (recorder record_every_steps): a replay needs every step\n";
+    return 2;
+  }
   const auto timing = recordedTiming(recording, o.recording);
   const std::string schedule_text = recording.meta(bus::meta::kSchedule);
   const bus::Schedule recorded_schedule =

@@ -10,6 +10,7 @@
 
 #include "bus/Convert.hpp"
 #include "bus/Recording.hpp"
+#include "bus/RecordingMeta.hpp"
 #include "bus/Serialization.hpp"
 #include "bus/Topics.hpp"
 #include "components/attitude_controller/AttitudeControllerNode.hpp"
@@ -81,6 +82,13 @@ nlohmann::ordered_json summarize(const bus::Scenario& scenario, const std::strin
                       pointing_sum += error;
                       ++pointing_count;
                     });
+
+  // A decimated recording (recorder record_every_steps) holds every Nth truth
+  // sample only: the run's extent is then the grants the launcher counted.
+  if (!recording.meta(bus::meta::kRecordEverySteps).empty() && launch.steps > 0) {
+    steps = launch.steps;
+    sim_seconds = static_cast<double>(launch.steps - 1) * scenario.step_s;
+  }
 
   nlohmann::ordered_json s;
   s["scenario"] = scenario.name;

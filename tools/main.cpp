@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // flatsat: run, check and benchmark rig scenarios.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -21,6 +22,7 @@
 #include "components/Registry.hpp"
 #include "tools/FieldCommand.hpp"
 #include "tools/CmdCommand.hpp"
+#include "tools/Composed.hpp"
 #include "tools/EchoCommand.hpp"
 #include "tools/ExportCommand.hpp"
 #include "tools/HealthCommand.hpp"
@@ -72,6 +74,7 @@ struct RunOptions {
   bool quiet = false;
   bool json = false;
   bool plots = true;  // the review figures into <run>/plots (flatsat plot)
+  bool composed = false;  // every component in this process, in-process bus (tools/Composed.hpp)
 };
 
 /// `--prefix COMPONENT=COMMAND` into component -> argv words. `*` stands
@@ -128,6 +131,11 @@ int run(const RunOptions& o, nlohmann::ordered_json* summary_out = nullptr) {
     std::cerr << "error: " << run_dir << " already holds a recording; choose another --out\n";
     return kExitBadInput;
   }
+  if (o.composed && !o.prefixes.empty()) {
+    std::cerr << "error: --prefix: a composed run starts no processes to prefix\n";
+    return kExitBadInput;
+  }
+  const bool new_run_dir = !fs::exists(run_dir);
   bus::Scenario scenario;
   try {
     auto overrides = o.overrides;
@@ -138,21 +146,34 @@ int run(const RunOptions& o, nlohmann::ordered_json* summary_out = nullptr) {
     std::cerr << "error: " << e.what() << "\n";
     return kExitBadInput;
   }
+  if (const auto problems = o.composed ? tools::composedProblems(scenario) : std::vector<std::string>{};
+      !problems.empty()) {
+    std::cerr << "error: " << o.scenario << ": cannot run composed (--composed):\n";
+    for (const auto& p : problems) std::cerr << "  " << o.scenario << ": " << p << "\n";
+    if (new_run_dir) fs::remove_all(run_dir);
+    return kExitBadInput;
+  }
   const std::string bin_dir = fs::canonical("/proc/self/exe").parent_path().string();
   tools::LaunchOptions launch_options{bin_dir, run_dir, fs::absolute(scenario.file).string(),
                                       o.log_level, !o.quiet};
   if (!parsePrefixes(o.prefixes, scenario, launch_options.prefixes)) return kExitBadInput;
   if (!o.secure.empty() && !enableSecurity(o.secure, scenario)) return kExitBadInput;
-  // Segments left by processes killed in an earlier run go first.
-  tools::cleanStaleSharedMemory(tools::kShmGrace);
-  if (!o.quiet) {
-    std::cerr << "flatsat: running '" << scenario.name << "' (" << scenario.components.size()
-              << " processes, domain " << bus::domainFromEnvironment(scenario.domain_id)
-              << ") into " << run_dir << "\n";
+  if (o.composed && !o.quiet) {
+    std::cerr << "flatsat: running '" << scenario.name << "' composed (" << scenario.components.size()
+              << " components in this process, no DDS) into " << run_dir << "\n";
+  } else if (!o.composed) {
+    // Segments left by processes killed in an earlier run go first.
+    tools::cleanStaleSharedMemory(tools::kShmGrace);
+    if (!o.quiet) {
+      std::cerr << "flatsat: running '" << scenario.name << "' (" << scenario.components.size()
+                << " processes, domain " << bus::domainFromEnvironment(scenario.domain_id)
+                << ") into " << run_dir << "\n";
+    }
   }
   tools::LaunchResult result;
   try {
-    result = tools::launch(scenario, launch_options);
+    result = o.composed ? tools::runComposed(scenario, launch_options)
+                        : tools::launch(scenario, launch_options);
   } catch (const std::exception& e) {  // the launcher's own participant (FLATSAT_PEERS, ...)
     std::cerr << "error: " << e.what() << "\n";
     return kExitFailed;
@@ -215,7 +236,27 @@ int bench(const std::string& scenario, double duration_s) {
     std::printf("speed_factor=%.1f\n", summary["speed_factor"].get<double>());
     fs::remove_all(out);
   }
-  return rc;
+  if (rc != 0) return rc;
+  // The same scenario composed into one process, its recording decimated to
+  // 1 Hz as 42 writes its output files (issue 10's composed figure), each
+  // transaction holding as many recorded steps as the recorder's default.
+  bus::Scenario loaded;
+  if (!loadChecked(scenario, "", loaded)) return kExitBadInput;
+  if (!tools::composedProblems(loaded).empty()) {
+    std::cerr << "flatsat bench: " << scenario << " cannot run composed; no composed figures\n";
+    return 0;
+  }
+  const long every = std::max(1L, std::lround(1.0 / loaded.step_s));
+  o.composed = true;
+  o.overrides.push_back("components.recorder.record_every_steps=" + std::to_string(every));
+  o.overrides.push_back("components.recorder.commit_every_steps=" + std::to_string(50 * every));
+  const int composed_rc = run(o, &summary);
+  if (composed_rc == 0) {
+    std::printf("composed_steps_per_s=%.1f\n", summary["steps_per_second"].get<double>());
+    std::printf("composed_speed_factor=%.1f\n", summary["speed_factor"].get<double>());
+    fs::remove_all(out);
+  }
+  return composed_rc;
 }
 
 }  // namespace
@@ -238,6 +279,9 @@ int main(int argc, char** argv) {
   run_cmd->add_flag("--json", run_options.json, "print the summary as JSON");
   run_cmd->add_flag("!--no-plots", run_options.plots,
                     "skip the review figures (default: flatsat plot into <run>/plots)");
+  run_cmd->add_flag("--composed", run_options.composed,
+                    "every component in this one process on an in-process bus (no DDS), "
+                    "scheduled in data-flow order: same recording, much faster; lockstep only");
   run_cmd->add_option("--seed", run_options.seed, "scenario seed: dispersed initial conditions and noise");
   run_cmd->add_option("--prefix", run_options.prefixes,
                       "COMPONENT=COMMAND: start that component under COMMAND (split at spaces), "

@@ -15,6 +15,9 @@ std::vector<std::string> RecorderParams::validate() const {
   if (commit_every_steps < 1 || commit_every_steps > 100000) {
     problems.push_back("commit_every_steps: must be in 1..100000");
   }
+  if (record_every_steps < 1 || record_every_steps > 100000) {
+    problems.push_back("record_every_steps: must be in 1..100000");
+  }
   return problems;
 }
 
@@ -39,7 +42,7 @@ RecorderNode::RecorderNode(bus::Bus& bus, bus::NodeOptions options, const Record
   // recorder's own shutdown, and a recording must not depend on who won.
   grants_ = std::make_unique<bus::ReaderOf<bus::topics::kStepGrant>>(
       bus, bus::topics::kStepGrant, [this](const msg::StepGrant& grant) {
-        if (grant.stop()) return;
+        if (grant.stop() || !recorded(grant.header().step())) return;
         store(std::string(bus::topics::kStepGrant.name), grant.header(),
               bus::serialize<std::remove_cvref_t<decltype(bus::topics::kStepGrant)>>(grant));
       });
@@ -66,6 +69,7 @@ void RecorderNode::record(const Def& def) {
   // Samples are stored as they arrive; in lockstep the input's wait for step
   // k then guarantees they are all in before StepDone(k).
   addInput(def, [this, topic = std::string(def.name)](const typename Def::Type& sample) {
+    if (!recorded(sample.header().step())) return;
     store(topic, sample.header(), bus::serialize<Def>(sample));
   });
 }
@@ -84,6 +88,7 @@ RecorderParams readParams(const bus::Scenario& scenario, const bus::NodeArgs& ar
   }
   auto r = scenario.componentParams(args.name, problems);
   r.read("commit_every_steps", p.commit_every_steps);
+  r.read("record_every_steps", p.record_every_steps);
   r.problems(p.validate());
   if (scenario.schedule().at(args.name) != 1) r.problem("rate_divider", "the recorder must run every step (1)");
   r.finish();
@@ -91,6 +96,7 @@ RecorderParams readParams(const bus::Scenario& scenario, const bus::NodeArgs& ar
             {bus::meta::kSchedule, bus::meta::formatSchedule(scenario.schedule())},
             {bus::meta::kMode, scenario.pacing == bus::Pacing::kPaced ? "paced" : "lockstep"},
             {bus::meta::kLeaseMs, std::to_string(std::llround(scenario.liveliness_lease_s * 1e3))}};
+  if (p.record_every_steps != 1) p.meta[bus::meta::kRecordEverySteps] = std::to_string(p.record_every_steps);
   return p;
 }
 

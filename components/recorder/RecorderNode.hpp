@@ -15,6 +15,10 @@ namespace flatsat::recorder {
 struct RecorderParams {
   std::string path;                   // recording file (SQLite), created
   std::uint32_t commit_every_steps = 50;  // [-] steps per transaction, 1..100000
+  /// [-] decimation: stores the stepped samples and grants stamped at multiples of
+  /// this only (as 42 writes its files at an output interval), 1..100000; the
+  /// recorder still waits for every sample. 1: every step.
+  std::uint32_t record_every_steps = 1;
   std::map<std::string, std::string> meta;  // about the rig (bus/RecordingMeta.hpp)
   std::vector<std::string> validate() const;
 };
@@ -38,6 +42,8 @@ class RecorderNode final : public bus::Component {
   std::unique_ptr<bus::Reader<Def>> recordAsItComes(bus::Bus& bus, const Def& def);
   void store(const std::string& topic, const msg::SampleHeader& header,
              const std::vector<std::uint8_t>& payload);
+  /// Whether a stepped sample or grant stamped `step` goes into the recording.
+  bool recorded(std::uint64_t step) const { return step % params_.record_every_steps == 0; }
 
   RecorderParams params_;
   std::mutex recording_mutex_;  // the step thread and the health callback both insert

@@ -1,0 +1,23 @@
+// SPDX-License-Identifier: Apache-2.0
+#pragma once
+#include <string>
+#include <vector>
+
+#include "bus/Scenario.hpp"
+#include "tools/Launcher.hpp"
+
+namespace flatsat::tools {
+
+/// Why the scenario cannot run composed, one line per component or key
+/// ("key: reason"); empty when it can. A composed rig is lockstep,
+/// and holds only components that need no DDS peer and no wall clock.
+std::vector<std::string> composedProblems(const bus::Scenario& scenario);
+
+/// `flatsat run --composed`: every component of the scenario in this
+/// process on one in-process bus (no DDS participant), scheduled in
+/// data-flow order on this thread (bus/Composed.hpp). Logs go to
+/// run_dir/logs/composed.log; prefixes are not used. The scenario must
+/// have no composedProblems().
+LaunchResult runComposed(const bus::Scenario& scenario, const LaunchOptions& options);
+
+}  // namespace flatsat::tools
