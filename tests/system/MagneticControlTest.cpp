@@ -22,8 +22,9 @@ nlohmann::json runScenario(const std::string& file, const std::string& tag, cons
   test::exportTestDomain();
   const fs::path out = fs::temp_directory_path() / ("flatsat-test-" + tag + "-" + std::to_string(::getpid()));
   fs::remove_all(out);
-  const auto command = test::runCommand(kFlatsat + " run --no-plots " + std::string(FLATSAT_SCENARIO_DIR) + "/" + file +
-                                        " -q --out " + out.string() + " " + extra);
+  // Composed (ComposedTest: the same recording as the multi-process rig): orbits in seconds.
+  const auto command = test::runCommand(kFlatsat + " run --composed --no-plots " + std::string(FLATSAT_SCENARIO_DIR) +
+                                        "/" + file + " -q --out " + out.string() + " " + extra);
   INFO(command.output);
   REQUIRE(command.exit_code == 0);
   nlohmann::json summary;

@@ -29,7 +29,10 @@ MekfRun runMekf(const std::string& tag, const std::string& extra, const std::str
   test::exportTestDomain();
   const fs::path out = fs::temp_directory_path() / ("flatsat-test-" + tag + "-" + std::to_string(::getpid()));
   fs::remove_all(out);
-  const auto run = test::runCommand(kFlatsat + " run " + scenario + " -q --no-plots --out " + out.string() + " " + extra);
+  // Composed: the same components in one process (ComposedTest shows it records what the
+  // multi-process rig records), an hour of orbit in seconds.
+  const auto run = test::runCommand(kFlatsat + " run " + scenario + " --composed -q --no-plots --out " +
+                                    out.string() + " " + extra);
   INFO(run.output);
   REQUIRE(run.exit_code == 0);
   MekfRun result;

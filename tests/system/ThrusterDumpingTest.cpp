@@ -20,7 +20,8 @@ TEST_CASE("thruster couples dump wheel momentum from 90 % to under 10 % of capac
   const fs::path out = fs::temp_directory_path() / ("flatsat-test-dumping-" + std::to_string(::getpid()));
   fs::remove_all(out);
   const auto command = test::runCommand(std::string(FLATSAT_BIN_DIR) + "/flatsat run " +
-                                        std::string(FLATSAT_SCENARIO_DIR) + "/thruster_dumping.yaml -q --out " +
+                                        std::string(FLATSAT_SCENARIO_DIR) +
+                                        "/thruster_dumping.yaml --composed -q --no-plots --out " +
                                         out.string());
   INFO(command.output);
   REQUIRE(command.exit_code == 0);

@@ -11,9 +11,10 @@ using namespace flatsat;
 TEST_CASE("cross-product unloading holds the wheels inside its start threshold over 10 orbits",
           "[system][slow][unloading]") {
   const std::string scenario = std::string(FLATSAT_SCENARIO_DIR) + "/unloading_10orbits.yaml";
-  const auto on = test::runScenario(scenario, test::freshDir("u10-on")).summary;
+  // Composed (ComposedTest: the same recording as the multi-process rig): ten orbits in seconds.
+  const auto on = test::runScenario(scenario, test::freshDir("u10-on"), "--composed").summary;
   const auto off = test::runScenario(scenario, test::freshDir("u10-off"),
-                                     "--set components.unloading_controller.enabled=false")
+                                     "--composed --set components.unloading_controller.enabled=false")
                        .summary;
   INFO(on.dump(2));
   INFO(off.dump(2));
