@@ -69,6 +69,12 @@ bool Component::handle(const msg::StepGrant& grant) {
   if (grant.stop()) return false;
   const StepContext ctx{grant.header().step(), grant.header().sim_time_ns(),
                         grant.step_period_ns()};
+  if (granted_ && ctx.step <= *granted_) {  // granted again after a stall (kResendAfter)
+    rewriteOutputs();
+    done_.rewriteLast();
+    return true;
+  }
+  granted_ = ctx.step;
   if (ctx.step % divider_ == 0 && waitForInputs(ctx.step)) {
     step(ctx);
     msg::StepDone done;

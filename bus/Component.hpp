@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #pragma once
 #include <deque>
+#include <optional>
 
 #include "bus/Node.hpp"
 
@@ -55,6 +56,7 @@ class Component : public Node {
   ReaderOf<topics::kStepGrant> grant_reader_;
   WriterOf<topics::kStepDone> done_;
   std::uint64_t steps_done_ = 0;
+  std::optional<std::uint64_t> granted_;  // the newest step granted
   std::string status_ = "stepping";
 };
 

@@ -2,6 +2,7 @@
 #pragma once
 #include <chrono>
 #include <functional>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -52,6 +53,12 @@ class Writer {
     if (!writer_->write(const_cast<Sample*>(&sample))) {
       throw std::runtime_error("write failed on topic " + name_);
     }
+    last_ = sample;
+  }
+  /// Writes the last sample again (over DDS only: in-process delivery is
+  /// never lost). Readers that hold it already drop the copy (bus::Input).
+  void rewriteLast() {
+    if (local_ == nullptr && last_) write(*last_);
   }
   int matchedReaders() const {
     if (local_ != nullptr) return local_->readers();
@@ -89,6 +96,7 @@ class Writer {
 
  private:
   std::string name_;
+  std::optional<Sample> last_;  // for rewriteLast()
   eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
   eprosima::fastdds::dds::DataWriter* writer_ = nullptr;
   LocalChannel<Def>* local_ = nullptr;

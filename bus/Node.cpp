@@ -62,6 +62,7 @@ bool Node::waitForInputs(std::uint64_t k) {
   const auto deadline = now + (paced() ? std::chrono::duration_cast<std::chrono::milliseconds>(
                                               options_.period / 2)
                                        : options_.step_timeout);
+  auto next_resend = now + kResendAfter;
   std::unique_lock lock(mutex_);
   for (;;) {
     const InputBase* missing = nullptr;
@@ -87,12 +88,23 @@ bool Node::waitForInputs(std::uint64_t k) {
       }
       return true;
     }
+    if (!paced() && std::chrono::steady_clock::now() > next_resend) {
+      next_resend += kResendAfter;
+      lock.unlock();  // onStall publishes: never under the node's lock
+      onStall(k);
+      lock.lock();
+      continue;
+    }
     changed_.wait_until(lock, std::min(deadline, std::chrono::steady_clock::now() + kPoll));
   }
 }
 
 void Node::dropInputsBefore(std::uint64_t k) {
   for (auto& input : inputs_) input->dropBefore(k);
+}
+
+void Node::rewriteOutputs() {
+  for (auto& output : outputs_) output->rewrite();
 }
 
 void Node::flushOutputs() {

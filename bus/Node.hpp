@@ -2,6 +2,7 @@
 #pragma once
 #include <chrono>
 #include <condition_variable>
+#include <algorithm>
 #include <functional>
 #include <cstdint>
 #include <map>
@@ -32,6 +33,11 @@ enum class Pacing {
 
 /// Wall-clock period of the RUNNING health heartbeat.
 inline constexpr auto kHealthPeriod = std::chrono::seconds(1);
+/// Lockstep: a step that has not completed after this long is granted again
+/// and its samples written again. A reader that matched its writer only after
+/// the write can miss a transient-local sample (Fast DDS issue #3822), which
+/// would otherwise stall the rig; every reader drops the copies it holds.
+inline constexpr auto kResendAfter = std::chrono::seconds(2);
 
 /// What every node needs to know about its place in the rig.
 struct NodeOptions {
@@ -103,8 +109,13 @@ class Input final : public InputBase {
   std::uint32_t divider_;
   std::uint32_t lag_;
   Observer observer_;
+  /// A sample the producer wrote again (TimeMaster's resend after a stall)
+  /// that this input holds already or has consumed: dropped, so observers
+  /// (the recorder) see each sample once.
+  bool resent(const Sample& sample) const;
   mutable std::mutex mutex_;
   std::map<std::uint64_t, Sample> samples_;
+  std::uint64_t consumed_before_ = 0;  ///< steps below this were dropped (dropBefore)
   Reader<Def> reader_;
 };
 
@@ -168,6 +179,10 @@ class Node {
   void dropInputsBefore(std::uint64_t k);
   /// Waits until every output's readers acknowledged all samples.
   void flushOutputs();
+  /// Writes every output's last sample again (see TimeMaster::resendStep).
+  void rewriteOutputs();
+  /// Lockstep: called every kResendAfter while waitForInputs(k) waits.
+  virtual void onStall(std::uint64_t k) {}
   void publishHealth(msg::ComponentState state, std::uint64_t steps_done,
                      const std::string& message);
 
@@ -194,11 +209,13 @@ class Node {
   struct OutputBase {
     virtual ~OutputBase() = default;
     virtual bool flush() = 0;
+    virtual void rewrite() = 0;
   };
   template <class Def>
   struct WriterHolder final : OutputBase {
     WriterHolder(Bus& bus, const Def& def) : writer(bus, def) {}
     bool flush() override { return writer.waitForAcknowledgments(std::chrono::seconds(5)); }
+    void rewrite() override { writer.rewriteLast(); }
     Writer<Def> writer;
   };
   std::vector<std::unique_ptr<InputBase>> inputs_;
@@ -234,6 +251,7 @@ Input<Def>::Input(Node& node, const Def& def, std::uint32_t producer_divider, Ob
       lag_(lag_steps),
       observer_(std::move(observer)),
       reader_(node.bus_, def, [this](const Sample& sample) {
+        if (resent(sample)) return;
         if (observer_) observer_(sample);
         {
           std::lock_guard lock(mutex_);
@@ -241,6 +259,15 @@ Input<Def>::Input(Node& node, const Def& def, std::uint32_t producer_divider, Ob
         }
         node_.notify();
       }) {}
+
+template <class Def>
+bool Input<Def>::resent(const Sample& sample) const {
+  const std::uint64_t step = sample.header().step();
+  std::lock_guard lock(mutex_);
+  if (!node_.paced() && step < consumed_before_) return true;
+  const auto held = samples_.find(step);
+  return held != samples_.end() && text(held->second.header().source()) == text(sample.header().source());
+}
 
 template <class Def>
 typename Input<Def>::Sample Input<Def>::at(std::uint64_t k) const {
@@ -275,6 +302,7 @@ template <class Def>
 void Input<Def>::dropBefore(std::uint64_t k) {
   if (!due(k)) return;
   std::lock_guard lock(mutex_);
+  consumed_before_ = std::max(consumed_before_, stampFor(k));
   samples_.erase(samples_.begin(), samples_.lower_bound(stampFor(k)));
 }
 

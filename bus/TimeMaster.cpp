@@ -59,8 +59,16 @@ void TimeMaster::waitForComponents() {
       "waiting for every component to be READY");
 }
 
+void TimeMaster::resendStep(std::uint64_t k, const std::string& missing) {
+  spdlog::warn("{}: step {} stalled for {} s, granting it again; waiting for:{}", name(), k,
+               std::chrono::duration_cast<std::chrono::seconds>(kResendAfter).count(), missing);
+  rewriteOutputs();
+  grant_.rewriteLast();
+}
+
 void TimeMaster::waitForDone(std::uint64_t k) {
   const auto deadline = std::chrono::steady_clock::now() + options_.step_timeout;
+  auto next_resend = std::chrono::steady_clock::now() + kResendAfter;
   std::unique_lock lock(mutex_);
   for (;;) {
     std::string missing;
@@ -81,6 +89,13 @@ void TimeMaster::waitForDone(std::uint64_t k) {
     if (std::chrono::steady_clock::now() > deadline) {
       throw NodeFailure(name() + ": step " + std::to_string(k) + ": no StepDone within " +
                         std::to_string(options_.step_timeout.count()) + " ms from:" + missing);
+    }
+    if (std::chrono::steady_clock::now() > next_resend) {
+      next_resend += kResendAfter;
+      lock.unlock();  // publishing: never under the node's lock
+      resendStep(k, missing);
+      lock.lock();
+      continue;
     }
     changed_.wait_for(lock, std::chrono::milliseconds(100));
   }

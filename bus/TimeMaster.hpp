@@ -50,6 +50,12 @@ class TimeMaster : public Node {
  private:
   void waitForComponents();
   void waitForDone(std::uint64_t k);
+  /// Lockstep stall at step k: the grant and this master's samples of step k
+  /// again; a component granted a step it did already writes its samples and
+  /// StepDone again (Component::handle), so a sample a late-matched reader
+  /// missed arrives after all (kResendAfter).
+  void resendStep(std::uint64_t k, const std::string& missing);
+  void onStall(std::uint64_t k) override { resendStep(k, " inputs of " + name()); }
   void waitForTick(std::chrono::steady_clock::time_point tick);
   std::string failedComponents() const;
 

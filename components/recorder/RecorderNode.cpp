@@ -42,7 +42,10 @@ RecorderNode::RecorderNode(bus::Bus& bus, bus::NodeOptions options, const Record
   // recorder's own shutdown, and a recording must not depend on who won.
   grants_ = std::make_unique<bus::ReaderOf<bus::topics::kStepGrant>>(
       bus, bus::topics::kStepGrant, [this](const msg::StepGrant& grant) {
+        // A grant sent again after a stall (bus::kResendAfter) is recorded once.
         if (grant.stop() || !recorded(grant.header().step())) return;
+        if (last_grant_ && grant.header().step() <= *last_grant_) return;
+        last_grant_ = grant.header().step();
         store(std::string(bus::topics::kStepGrant.name), grant.header(),
               bus::serialize<std::remove_cvref_t<decltype(bus::topics::kStepGrant)>>(grant));
       });

@@ -3,6 +3,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -55,6 +56,7 @@ class RecorderNode final : public bus::Component {
   std::unique_ptr<bus::ReaderOf<bus::topics::kParamCmd>> param_commands_;
   std::unique_ptr<bus::ReaderOf<bus::topics::kCommandAck>> acks_;
   std::unique_ptr<bus::ReaderOf<bus::topics::kStepGrant>> grants_;
+  std::optional<std::uint64_t> last_grant_;  // on the grant reader's thread only
 };
 
 /// components.<name>; the file goes to the run directory (--out).
