@@ -1,0 +1,18 @@
+# SPDX-License-Identifier: Apache-2.0
+# flatsat_unity_group(<target> <group> <file>...): compiles those sources of
+# the target as one file (a unity build), so the headers and the inline code
+# they share (CLI11, nlohmann-json, Fast DDS, fmt) are compiled once for the
+# group instead of once per file. A cold build (CI builds a clean clone) is
+# then much cheaper; an edit recompiles the whole group.
+# Files of one group share one translation unit: names in their anonymous
+# namespaces must differ (a clash is a compile error; keep a file out of the
+# group rather than rename). Files in no group are compiled alone.
+# -DFLATSAT_UNITY=OFF compiles every file alone.
+function(flatsat_unity_group target group)
+  if(NOT FLATSAT_UNITY)
+    return()
+  endif()
+  set_target_properties(${target} PROPERTIES UNITY_BUILD ON UNITY_BUILD_MODE GROUP)
+  set_source_files_properties(${ARGN} TARGET_DIRECTORY ${target}
+                              PROPERTIES UNITY_GROUP ${target}_${group})
+endfunction()
