@@ -15,6 +15,7 @@
 #include "bus/Node.hpp"
 #include "components/magnetometer/MagnetometerNode.hpp"
 #include "tests/support/TestDomain.hpp"
+#include "tests/support/Within.hpp"
 
 namespace {
 
@@ -32,16 +33,6 @@ class Consumer final : public bus::Node {
   bus::InputOf<bus::topics::kMagnetometer>& reading_ =
       addInput(bus::topics::kMagnetometer, [this](const msg::MagnetometerReading&) { ++observed; });
 };
-
-template <class Done>
-bool within(double seconds, Done&& done) {
-  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
-  while (!done()) {
-    if (std::chrono::steady_clock::now() > end) return false;
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  }
-  return true;
-}
 
 }  // namespace
 
@@ -87,18 +78,18 @@ TEST_CASE("a step granted again is written again, and an input passes each sampl
     g.stop(stop);
     grants.write(g);
   };
-  REQUIRE(within(20, [&] { return truth.matchedReaders() == 1 && grants.matchedReaders() == 1; }));
+  REQUIRE(test::within(20, [&] { return truth.matchedReaders() == 1 && grants.matchedReaders() == 1; }));
   msg::TruthState state;
   state.header(bus::makeHeader({0, 0, kPeriodNs}, "dynamics_server"));
   bus::put(state.b_body_T(), Eigen::Vector3d(2e-5, -1e-5, 3e-5));
   truth.write(state);
 
   grant(0, false);
-  REQUIRE(within(10, [&] { return count(done, 0) == 1 && consumer.observed == 1; }));
+  REQUIRE(test::within(10, [&] { return count(done, 0) == 1 && consumer.observed == 1; }));
   CHECK(count(readings, 0) == 1);
 
   grant(0, false);  // the same step again, as TimeMaster::resendStep does after a stall
-  REQUIRE(within(10, [&] { return count(done, 0) == 2 && count(readings, 0) == 2; }));
+  REQUIRE(test::within(10, [&] { return count(done, 0) == 2 && count(readings, 0) == 2; }));
   std::this_thread::sleep_for(std::chrono::milliseconds(200));
   CHECK(consumer.observed == 1);  // the copy was dropped by the input
 

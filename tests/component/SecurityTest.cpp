@@ -17,6 +17,7 @@
 #include "bus/Topics.hpp"
 #include "tests/support/Run.hpp"
 #include "tests/support/TestDomain.hpp"
+#include "tests/support/Within.hpp"
 
 namespace fs = std::filesystem;
 using namespace flatsat;
@@ -50,17 +51,6 @@ msg::FaultCmd faultCommand(std::uint64_t id) {
   return command;
 }
 
-/// Waits up to `seconds` for `done()`.
-template <class Done>
-bool within(double seconds, Done&& done) {
-  const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
-  while (!done()) {
-    if (std::chrono::steady_clock::now() > end) return false;
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-  return true;
-}
-
 }  // namespace
 
 TEST_CASE("with DDS Security only the operator commands, strangers and forged grants are shut out",
@@ -90,9 +80,9 @@ TEST_CASE("with DDS Security only the operator commands, strangers and forged gr
     bus::WriterOf<bus::topics::kFaultCmd> forged(injector, bus::topics::kFaultCmd);
 
     // The operator's command arrives: the channel works.
-    REQUIRE(within(20, [&] { return genuine.matchedReaders() == 1; }));
+    REQUIRE(test::within(20, [&] { return genuine.matchedReaders() == 1; }));
     genuine.write(faultCommand(1));
-    REQUIRE(within(10, [&] { return received.load() == 1; }));
+    REQUIRE(test::within(10, [&] { return received.load() == 1; }));
     CHECK(last_id == 1);
     // The rogue stays unmatched both ways however long it tries; its writes go nowhere.
     for (int i = 0; i < 30; ++i) {
