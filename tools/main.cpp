@@ -28,6 +28,7 @@
 #include "tools/HealthCommand.hpp"
 #include "tools/HzCommand.hpp"
 #include "tools/Launcher.hpp"
+#include "tools/McCommand.hpp"
 #include "tools/OrbitCommand.hpp"
 #include "tools/PhysicsBench.hpp"
 #include "tools/PlotCommand.hpp"
@@ -306,6 +307,8 @@ int main(int argc, char** argv) {
   auto* field_cmd = tools::addFieldCommand(app, field_exit);
   int study_exit = 0;
   auto* study_cmd = tools::addStudyCommand(app, study_exit);
+  int mc_exit = 0;
+  auto* mc_cmd = tools::addMcCommand(app, mc_exit);
   int tool_exit = 0;
   const std::vector<CLI::App*> tool_cmds = {
       tools::addTopicsCommand(app, tool_exit), tools::addEchoCommand(app, tool_exit),
@@ -327,6 +330,7 @@ int main(int argc, char** argv) {
   if (orbit_cmd->parsed()) return orbit_exit;
   if (field_cmd->parsed()) return field_exit;
   if (study_cmd->parsed()) return study_exit;
+  if (mc_cmd->parsed()) return mc_exit;
   for (auto* tool : tool_cmds) {
     if (tool->parsed()) return tool_exit;
   }
