@@ -153,6 +153,7 @@ class Joins {
 }  // namespace
 
 LaunchResult launch(const bus::Scenario& scenario, const LaunchOptions& options) {
+  const auto entered = Clock::now();  // startup includes the launcher's own participant
   LaunchResult result;
   const fs::path logs = fs::path(options.run_dir) / "logs";
   fs::create_directories(logs);
@@ -242,6 +243,7 @@ LaunchResult launch(const bus::Scenario& scenario, const LaunchOptions& options)
   progress.print(true);
   result.launch_seconds = std::chrono::duration<double>(Clock::now() - start).count();
   result.step_seconds = progress.stepSeconds();
+  result.startup_seconds = progress.startupSeconds(entered);
   result.steps = progress.steps();
   result.external_joined_s = joins.joined();
   result.ok = result.failure.empty();

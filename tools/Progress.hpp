@@ -48,6 +48,10 @@ class Progress {
                  wall > 0 ? sim / wall : 0.0, eta, (done || !terminal_) ? "\n" : "   ");
   }
   std::uint64_t steps() const { return steps_.load(); }
+  /// [s] from `start` to the first step granted; 0 when none was.
+  double startupSeconds(std::chrono::steady_clock::time_point start) const {
+    return steps_.load() == 0 ? 0.0 : std::chrono::duration<double>(first_.load() - start).count();
+  }
   double stepSeconds() const {
     return steps_.load() == 0 ? 0.0
                               : std::chrono::duration<double>(last_.load() - first_.load()).count();

@@ -95,6 +95,7 @@ nlohmann::ordered_json summarize(const bus::Scenario& scenario, const std::strin
   s["sim_seconds"] = sim_seconds;
   s["wall_seconds"] = launch.step_seconds;
   s["launch_seconds"] = launch.launch_seconds;
+  s["startup_seconds"] = launch.startup_seconds;
   s["speed_factor"] = launch.step_seconds > 0 ? sim_seconds / launch.step_seconds : 0.0;
   s["steps"] = steps;
   s["steps_per_second"] = launch.step_seconds > 0 ? static_cast<double>(steps) / launch.step_seconds : 0.0;

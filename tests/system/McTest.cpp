@@ -120,6 +120,9 @@ TEST_CASE("flatsat mc runs seeded composed runs in parallel and gathers them int
     CHECK(row.at("seed") == std::to_string(7000 + i));
     CHECK(row.at("exit_code") == "0");
     CHECK(row.at("steps") == "3001");
+    // Startup (launch to the first step) is part of the run's wall time.
+    CHECK(std::stod(row.at("startup_seconds")) > 0.0);
+    CHECK(std::stod(row.at("startup_seconds")) < std::stod(row.at("launch_seconds")));
     CHECK(fs::exists(fs::path(out) / ("run-" + std::to_string(i)) / "recording.sqlite"));
     CHECK_FALSE(fs::exists(fs::path(out) / ("run-" + std::to_string(i) + ".log")));  // kept only on failure
     seeds.insert(row.at("seed"));
@@ -180,7 +183,7 @@ TEST_CASE("flatsat mc refuses bad input with exit status 2, naming what is wrong
   }
 }
 
-TEST_CASE("a run that dies is reported with its log and exit status; the others still run", "[system][mc]") {
+TEST_CASE("a run that dies is reported with its log and exit status, and the others still run", "[system][mc]") {
   const std::string out = test::freshDir("mc-fail");
   const std::string log = out + ".log";
   const pid_t mc = test::startCommand(test::kFlatsat + " mc " + kDefault + " --runs 3 --jobs 1 --seed0 500 --out " +
