@@ -161,7 +161,7 @@ LaunchResult launch(const bus::Scenario& scenario, const LaunchOptions& options)
   bus::Bus bus({bus::domainFromEnvironment(scenario.domain_id), network.profile,
                 "flatsat-launcher", bus::qosTuning(scenario, bus::kEmulatorStrength),
                 network.peers, network.security_dir, bus::kOperatorIdentity});
-  Progress progress(bus, options.progress);
+  Progress progress(bus, options.progress, scenario.pacing == bus::Pacing::kPaced);
 
   const auto start = Clock::now();
   Joins joins(bus, scenario, start);
@@ -245,6 +245,7 @@ LaunchResult launch(const bus::Scenario& scenario, const LaunchOptions& options)
   result.step_seconds = progress.stepSeconds();
   result.startup_seconds = progress.startupSeconds(entered);
   result.steps = progress.steps();
+  result.tick_jitter = progress.tickJitter();
   result.external_joined_s = joins.joined();
   result.ok = result.failure.empty();
   return result;
