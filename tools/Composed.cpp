@@ -116,6 +116,7 @@ LaunchResult runComposed(const bus::Scenario& scenario, const LaunchOptions& opt
   progress.print(true);
   result.launch_seconds = std::chrono::duration<double>(Clock::now() - start).count();
   result.step_seconds = progress.stepSeconds();
+  result.startup_seconds = progress.startupSeconds(start);
   result.steps = progress.steps();
   result.processes = 1;
   result.ok = result.failure.empty();

@@ -153,6 +153,7 @@ class Joins {
 }  // namespace
 
 LaunchResult launch(const bus::Scenario& scenario, const LaunchOptions& options) {
+  const auto entered = Clock::now();  // startup includes the launcher's own participant
   LaunchResult result;
   const fs::path logs = fs::path(options.run_dir) / "logs";
   fs::create_directories(logs);
@@ -160,7 +161,7 @@ LaunchResult launch(const bus::Scenario& scenario, const LaunchOptions& options)
   bus::Bus bus({bus::domainFromEnvironment(scenario.domain_id), network.profile,
                 "flatsat-launcher", bus::qosTuning(scenario, bus::kEmulatorStrength),
                 network.peers, network.security_dir, bus::kOperatorIdentity});
-  Progress progress(bus, options.progress);
+  Progress progress(bus, options.progress, scenario.pacing == bus::Pacing::kPaced);
 
   const auto start = Clock::now();
   Joins joins(bus, scenario, start);
@@ -242,7 +243,9 @@ LaunchResult launch(const bus::Scenario& scenario, const LaunchOptions& options)
   progress.print(true);
   result.launch_seconds = std::chrono::duration<double>(Clock::now() - start).count();
   result.step_seconds = progress.stepSeconds();
+  result.startup_seconds = progress.startupSeconds(entered);
   result.steps = progress.steps();
+  result.tick_jitter = progress.tickJitter();
   result.external_joined_s = joins.joined();
   result.ok = result.failure.empty();
   return result;

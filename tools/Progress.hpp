@@ -2,25 +2,37 @@
 #pragma once
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <mutex>
+#include <vector>
 
 #include "bus/Endpoints.hpp"
 #include "bus/Topics.hpp"
+#include "tools/Launcher.hpp"
 
 namespace flatsat::tools {
 
 /// Follows the grants to show progress and time the stepping (on the
-/// launcher's DDS bus, or inside a composed rig on its in-process bus).
+/// launcher's DDS bus, or inside a composed rig on its in-process bus);
+/// with `keep_arrivals` (paced runs) also when each grant arrived.
 class Progress {
  public:
-  Progress(bus::Bus& bus, bool show)
-      : show_(show), terminal_(::isatty(STDERR_FILENO) == 1), reader_(bus, bus::topics::kStepGrant, [this](const msg::StepGrant& g) {
+  Progress(bus::Bus& bus, bool show, bool keep_arrivals = false)
+      : show_(show), terminal_(::isatty(STDERR_FILENO) == 1), keep_arrivals_(keep_arrivals),
+        reader_(bus, bus::topics::kStepGrant, [this](const msg::StepGrant& g) {
           if (g.stop()) return;
-          if (steps_.load() == 0) first_ = std::chrono::steady_clock::now();
-          last_ = std::chrono::steady_clock::now();
+          const auto now = std::chrono::steady_clock::now();
+          if (keep_arrivals_) {
+            const std::lock_guard lock(arrivals_mutex_);
+            arrivals_.emplace_back(g.header().step(), now);
+          }
+          if (steps_.load() == 0) first_ = now;
+          last_ = now;
           final_step_ = g.final_step();
           period_ns_ = g.step_period_ns();
           steps_.store(g.header().step() + 1);
@@ -48,6 +60,37 @@ class Progress {
                  wall > 0 ? sim / wall : 0.0, eta, (done || !terminal_) ? "\n" : "   ");
   }
   std::uint64_t steps() const { return steps_.load(); }
+  TickJitter tickJitter() const {
+    const std::lock_guard lock(arrivals_mutex_);
+    TickJitter j;
+    if (arrivals_.empty() || period_ns_.load() <= 0) return j;
+    const auto period = std::chrono::nanoseconds(period_ns_.load());
+    std::vector<double> offsets_ns;  // arrival - step * period, from an arbitrary origin
+    std::uint64_t last_step = 0;
+    for (const auto& [step, at] : arrivals_) {
+      const auto grid = arrivals_.front().second + period * static_cast<std::int64_t>(step - arrivals_.front().first);
+      offsets_ns.push_back(static_cast<double>((at - grid).count()));
+      last_step = std::max(last_step, step);
+    }
+    const double earliest = *std::min_element(offsets_ns.begin(), offsets_ns.end());
+    for (auto& o : offsets_ns) o = (o - earliest) * 1e-3;
+    std::sort(offsets_ns.begin(), offsets_ns.end());
+    const auto rank = [&](double q) {  // nearest rank
+      const auto r = static_cast<std::size_t>(std::ceil(q * static_cast<double>(offsets_ns.size())));
+      return offsets_ns[std::clamp<std::size_t>(r, 1, offsets_ns.size()) - 1];
+    };
+    j.p50_us = rank(0.50);
+    j.p99_us = rank(0.99);
+    j.max_us = offsets_ns.back();
+    j.ticks = offsets_ns.size();
+    const std::uint64_t expected = last_step + 1 - arrivals_.front().first;
+    j.missed = expected > j.ticks ? expected - j.ticks : 0;
+    return j;
+  }
+  /// [s] from `start` to the first step granted; 0 when none was.
+  double startupSeconds(std::chrono::steady_clock::time_point start) const {
+    return steps_.load() == 0 ? 0.0 : std::chrono::duration<double>(first_.load() - start).count();
+  }
   double stepSeconds() const {
     return steps_.load() == 0 ? 0.0
                               : std::chrono::duration<double>(last_.load() - first_.load()).count();
@@ -56,6 +99,9 @@ class Progress {
  private:
   bool show_;
   bool terminal_;
+  bool keep_arrivals_;
+  mutable std::mutex arrivals_mutex_;
+  std::vector<std::pair<std::uint64_t, std::chrono::steady_clock::time_point>> arrivals_;
   int last_tenth_ = -1;
   std::atomic<std::uint64_t> steps_{0};
   std::atomic<std::chrono::steady_clock::time_point> first_{}, last_{};

@@ -95,6 +95,7 @@ nlohmann::ordered_json summarize(const bus::Scenario& scenario, const std::strin
   s["sim_seconds"] = sim_seconds;
   s["wall_seconds"] = launch.step_seconds;
   s["launch_seconds"] = launch.launch_seconds;
+  s["startup_seconds"] = launch.startup_seconds;
   s["speed_factor"] = launch.step_seconds > 0 ? sim_seconds / launch.step_seconds : 0.0;
   s["steps"] = steps;
   s["steps_per_second"] = launch.step_seconds > 0 ? static_cast<double>(steps) / launch.step_seconds : 0.0;
@@ -110,6 +111,14 @@ nlohmann::ordered_json summarize(const bus::Scenario& scenario, const std::strin
   s["wheel_momentum_fraction_max"] = capacity > 0 ? h.max / capacity : 0.0;
   s["mode"] = scenario.pacing == bus::Pacing::kPaced ? "paced" : "lockstep";
   s["wheel_commands_late"] = late_commands;
+  if (scenario.pacing == bus::Pacing::kPaced) {
+    // How evenly the ticks came: each step grant's arrival at the launcher
+    // against the period grid (tools/Progress.hpp TickJitter).
+    s["tick_jitter_us_p50"] = launch.tick_jitter.p50_us;
+    s["tick_jitter_us_p99"] = launch.tick_jitter.p99_us;
+    s["tick_jitter_us_max"] = launch.tick_jitter.max_us;
+    s["ticks_missed"] = launch.tick_jitter.missed;
+  }
   std::map<std::string, std::pair<std::uint64_t, std::uint64_t>> lateness;  // stale, overruns
   nlohmann::ordered_json dropped = nlohmann::ordered_json::object();  // last count by component
   std::map<std::string, std::uint64_t> refused;                     // last count by component

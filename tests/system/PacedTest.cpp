@@ -37,5 +37,12 @@ TEST_CASE("a paced run follows the wall clock and applies the newest commands", 
   CHECK(summary["wheel_commands_late"].get<int>() < 20);
   CHECK(summary.contains("stale_inputs"));
   CHECK(summary.contains("overruns"));
+  // Every grant reached the launcher, each on the period grid to within a
+  // fraction of the period (the jitter is measured from the earliest).
+  CHECK(summary["ticks_missed"] == 0);
+  CHECK(summary["tick_jitter_us_p50"].get<double>() >= 0.0);
+  CHECK(summary["tick_jitter_us_p50"].get<double>() <= summary["tick_jitter_us_p99"].get<double>());
+  CHECK(summary["tick_jitter_us_p99"].get<double>() <= summary["tick_jitter_us_max"].get<double>());
+  CHECK(summary["tick_jitter_us_p99"].get<double>() < 0.5 * 0.1e6);
   fs::remove_all(out);
 }
