@@ -317,7 +317,9 @@ int main(int argc, char** argv) {
                       "(deploy/security/make-certs.sh DIR)");
 
   std::string check_file;
-  auto* check_cmd = app.add_subcommand("check", "check a scenario without running it");
+  auto* check_cmd = app.add_subcommand(
+      "check", "check a scenario without running it: file:line:col, key and reason per problem");
+  check_cmd->alias("validate");
   check_cmd->add_option("scenario", check_file, "scenario file (YAML)")->required();
 
   std::string bench_scenario = defaultScenario();

@@ -5,9 +5,11 @@
 
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include <nlohmann/json.hpp>
 
+#include "tests/support/Background.hpp"
 #include "tests/support/Rig.hpp"
 #include "tests/support/Run.hpp"
 #include "tests/support/TestDomain.hpp"
@@ -72,6 +74,23 @@ TEST_CASE("a bad scenario is refused before any process starts, naming file, key
     CHECK(result.output.find(c.expected_key) != std::string::npos);
     CHECK(result.output.find(c.expected_reason) != std::string::npos);
     CHECK_FALSE(fs::exists(fs::path(out) / "logs"));  // nothing was started
+  }
+  // validate (alias check) says the same without running anything, at the key's line.
+  const auto validated = test::runCommand(kFlatsat + " validate " + dir + "/unknown_key.yaml");
+  INFO(validated.output);
+  CHECK(validated.exit_code == 2);
+  std::istringstream fixture(test::readFile(dir + "/unknown_key.yaml"));
+  int line = 0, key_line = 0;
+  for (std::string text; std::getline(fixture, text);) {
+    ++line;
+    if (text.find("noise_density:") != std::string::npos) key_line = line;
+  }
+  REQUIRE(key_line > 0);
+  CHECK(validated.output.find("unknown_key.yaml:" + std::to_string(key_line) + ":") != std::string::npos);
+  for (const auto& scenario : fs::directory_iterator(FLATSAT_SCENARIO_DIR)) {
+    const auto ok = test::runCommand(kFlatsat + " validate " + scenario.path().string());
+    CAPTURE(scenario.path(), ok.output);
+    CHECK(ok.exit_code == 0);
   }
   const auto missing = test::runCommand(kFlatsat + " run " + dir + "/no_such_file.yaml");
   CHECK(missing.exit_code == 2);
