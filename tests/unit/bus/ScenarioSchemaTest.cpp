@@ -4,7 +4,6 @@
 // schema cannot fall behind the scenarios (issue 11). Keys every component
 // shares (rate_divider, role, faults, ...) are documented once as
 // components.<name>.key.
-#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <set>
