@@ -1,9 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "tools/Launcher.hpp"
 
-#include <fcntl.h>
 #include <signal.h>
-#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -27,8 +25,7 @@
 #include "bus/Security.hpp"
 #include "components/Registry.hpp"
 #include "tools/Progress.hpp"
-
-extern char** environ;
+#include "tools/Spawn.hpp"
 
 namespace flatsat::tools {
 
@@ -44,24 +41,6 @@ struct Child {
   std::string log;
   bool required = true;  // a stepped component: its death stops the rig
 };
-
-/// Starts argv[0] (looked up on PATH when it has no slash) with stdout and
-/// stderr into `log`.
-pid_t spawn(const std::vector<std::string>& args, const std::string& log) {
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(),
-                                   O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
-  std::vector<char*> argv;
-  for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-  argv.push_back(nullptr);
-  pid_t pid = -1;
-  const int rc = posix_spawnp(&pid, args.front().c_str(), &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (rc != 0) throw std::runtime_error("cannot start " + args.front() + ": " + std::strerror(rc));
-  return pid;
-}
 
 std::string describeExit(int status) {
   if (WIFEXITED(status)) return "exit code " + std::to_string(WEXITSTATUS(status));
@@ -178,7 +157,7 @@ LaunchResult launch(const bus::Scenario& scenario, const LaunchOptions& options)
     argv.insert(argv.end(), {(fs::path(options.bin_dir) / kind->executable).string(), "--scenario",
                              options.scenario_file, "--name", component.name, "--out",
                              options.run_dir, "--log", options.log_level});
-    child.pid = spawn(argv, child.log);
+    child.pid = spawnLogged(argv, child.log);
     spdlog::debug("started {} (pid {})", component.name, child.pid);
     children.push_back(child);
   };

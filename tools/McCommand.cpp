@@ -1,15 +1,12 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "tools/McCommand.hpp"
 
-#include <fcntl.h>
-#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <chrono>
 #include <csignal>
-#include <cstring>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -26,8 +23,7 @@
 #include "tools/Composed.hpp"
 #include "tools/McTable.hpp"
 #include "tools/RunDirectory.hpp"
-
-extern char** environ;
+#include "tools/Spawn.hpp"
 
 namespace flatsat::tools {
 
@@ -65,7 +61,8 @@ std::vector<std::string> checkCampaign(const McOptions& o, bus::Scenario& scenar
   return problems;
 }
 
-/// Starts run `index`: this executable's `run` with its stdout and stderr to `log`.
+/// Starts run `index`: this executable's `run` with its stdout and stderr to `log`;
+/// throws std::runtime_error when it cannot.
 pid_t startRun(const McOptions& o, const std::string& run_dir, std::uint64_t seed, const std::string& log) {
   const std::string exe = fs::canonical("/proc/self/exe").string();
   std::vector<std::string> args{exe,          "run",  fs::absolute(o.scenario).string(), "--composed",
@@ -75,17 +72,7 @@ pid_t startRun(const McOptions& o, const std::string& run_dir, std::uint64_t see
     args.push_back("--set");
     args.push_back(assignment);
   }
-  std::vector<char*> argv;
-  for (auto& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
-  pid_t pid = -1;
-  const int rc = ::posix_spawn(&pid, exe.c_str(), &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  return rc == 0 ? pid : -1;
+  return spawnLogged(args, log);
 }
 
 void showProgress(int done, int failed, int total, Clock::time_point start, bool last) {
@@ -128,9 +115,11 @@ int runCampaign(McOptions o) {
       run.index = next;
       run.seed = seed0 + static_cast<std::uint64_t>(next);
       run.log = (fs::path(o.out) / ("run-" + std::to_string(next) + ".log")).string();
-      const pid_t pid = startRun(o, (fs::path(o.out) / ("run-" + std::to_string(next))).string(), run.seed, run.log);
-      if (pid < 0) {
-        std::cerr << "error: mc: cannot start run " << next << ": " << std::strerror(errno) << "\n";
+      pid_t pid = -1;
+      try {
+        pid = startRun(o, (fs::path(o.out) / ("run-" + std::to_string(next))).string(), run.seed, run.log);
+      } catch (const std::runtime_error& e) {
+        std::cerr << "error: mc: run " << next << ": " << e.what() << "\n";
         stopping = true;
         break;
       }
