@@ -15,6 +15,7 @@
 #include "bus/Endpoints.hpp"
 #include "bus/Stamp.hpp"
 #include "bus/Topics.hpp"
+#include "tests/support/Certificates.hpp"
 #include "tests/support/Run.hpp"
 #include "tests/support/TestDomain.hpp"
 #include "tests/support/Within.hpp"
@@ -23,18 +24,6 @@ namespace fs = std::filesystem;
 using namespace flatsat;
 
 namespace {
-
-struct Certificates {
-  fs::path dir = fs::temp_directory_path() / ("flatsat-certs-" + std::to_string(::getpid()));
-  Certificates() {
-    fs::remove_all(dir);
-    const auto made = test::runCommand("bash " FLATSAT_SOURCE_DIR "/deploy/security/make-certs.sh " +
-                                       dir.string() + " gyro operator 2>&1");
-    INFO(made.output);
-    REQUIRE(made.exit_code == 0);
-  }
-  ~Certificates() { fs::remove_all(dir); }
-};
 
 bus::BusOptions secured(std::uint32_t domain, const fs::path& dir, const std::string& identity) {
   return {.domain_id = domain,
@@ -55,7 +44,7 @@ msg::FaultCmd faultCommand(std::uint64_t id) {
 
 TEST_CASE("with DDS Security only the operator commands, strangers and forged grants are shut out",
           "[component][dds][security]") {
-  const Certificates certs;
+  const test::Certificates certs("gyro operator");
   const std::uint32_t domain = test::testDomain();
 
   bus::Bus gyro(secured(domain, certs.dir, "gyro"));

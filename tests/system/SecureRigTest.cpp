@@ -8,6 +8,7 @@
 #include <filesystem>
 
 #include "tests/support/Background.hpp"
+#include "tests/support/Certificates.hpp"
 #include "tests/support/Rig.hpp"
 
 namespace fs = std::filesystem;
@@ -15,41 +16,30 @@ using namespace flatsat;
 
 namespace {
 
-struct Certificates {
-  std::string dir = test::freshDir("certs");
-  Certificates() {
-    const auto made =
-        test::runCommand("bash " FLATSAT_SOURCE_DIR "/deploy/security/make-certs.sh " + dir + " 2>&1");
-    INFO(made.output);
-    REQUIRE(made.exit_code == 0);
-  }
-  ~Certificates() { fs::remove_all(dir); }
-};
-
 const std::string kShortRun = " --set duration_orbits=null --set duration_s=60";
 
 }  // namespace
 
 TEST_CASE("a secured rig records exactly what the open rig records",
           "[system][security]") {
-  const Certificates certs;
+  const test::Certificates certs;
   const std::string scenario = std::string(FLATSAT_SCENARIO_DIR) + "/default.yaml";
   const auto open = test::runScenario(scenario, test::freshDir("open"), kShortRun);
   const auto secured =
-      test::runScenario(scenario, test::freshDir("secured"), kShortRun + " --secure " + certs.dir);
+      test::runScenario(scenario, test::freshDir("secured"), kShortRun + " --secure " + certs.dir.string());
   CHECK(secured.summary["steps"] == open.summary["steps"]);
   CHECK(secured.summary["recording_sha256"] == open.summary["recording_sha256"]);
 }
 
 TEST_CASE("a secured rig takes commands only from a tool with the operator's certificate",
           "[system][security][cmd]") {
-  const Certificates certs;
+  const test::Certificates certs;
   test::exportTestDomain();
   const std::string run = test::freshDir("secure-cmd");
   test::Background rig(test::kFlatsat + " run " + std::string(FLATSAT_SCENARIO_DIR) +
                            "/default.yaml -q --no-plots --out " + run +
                            " --set mode=paced --set duration_orbits=null --set duration_s=12" +
-                           " --secure " + certs.dir,
+                           " --secure " + certs.dir.string(),
                        run + ".log");
   REQUIRE(test::waitForText(fs::path(run) / "logs" / "dynamics_server.log",
                             "every component ready", 120, rig));
@@ -57,7 +47,7 @@ TEST_CASE("a secured rig takes commands only from a tool with the operator's cer
   const auto stranger = test::runCommand(fault + " 2>&1");
   INFO(stranger.output);
   CHECK(stranger.exit_code == 1);  // no acknowledgement: nobody heard it
-  const auto operator_cmd = test::runCommand("FLATSAT_SECURE_DIR=" + certs.dir + " " + fault + " 2>&1");
+  const auto operator_cmd = test::runCommand("FLATSAT_SECURE_DIR=" + certs.dir.string() + " " + fault + " 2>&1");
   INFO(operator_cmd.output);
   CHECK(operator_cmd.exit_code == 0);
   CHECK(operator_cmd.output.find("accepted by gyro") != std::string::npos);
