@@ -56,14 +56,16 @@ CaseResult runCase(bus::Scenario scenario, std::uint64_t seed) {
   scenario.seed = seed;
   bus::ConfigProblems problems;
   const auto server = sim::readDynamicsServerParams(scenario, "dynamics_server", problems);
-  const auto control =
-      unloading_controller::readParams(scenario, {scenario.file, "unloading_controller", ""}, problems).modes;
+  const auto node = unloading_controller::readParams(scenario, {scenario.file, "unloading_controller", ""}, problems);
+  const auto& control = node.modes;
   const auto sensor = magnetometer::readParams(scenario, {scenario.file, "magnetometer", ""}, problems);
   if (!problems.empty()) throw std::invalid_argument(problems.joined());
 
   sim::DynamicsModel model(server.dynamics);
   magnetometer::MagnetometerModel field_sensor(sensor.model);
   unloading_controller::MagneticModes modes(control);
+  std::optional<estimator::ReferenceModel> onboard;
+  if (node.onboard) onboard.emplace(*node.onboard);
   MagneticMetricsParams judge;
   judge.max_dipole_Am2 = control.unload.max_dipole_Am2;
   const bool spin = control.initial_mode == unloading_controller::MagneticMode::kSpinCapture ||
@@ -84,7 +86,12 @@ CaseResult runCase(bus::Scenario scenario, std::uint64_t seed) {
     const sim::Truth& truth = model.truth();
     if (k % sensor_divider == 0) reading = field_sensor.step({truth.b_B_T}, truth.t);
     if (k % control_divider == 0) {
-      const auto out = modes.step({truth.wheel_speed_rad_s, reading.b_B_T, !reading.saturated}, truth.t);
+      unloading_controller::MagneticModesInput in{truth.wheel_speed_rad_s, reading.b_B_T, !reading.saturated, std::nullopt};
+      if (onboard) {
+        const auto reference = onboard->step(truth.t);
+        in.onboard = unloading_controller::OnboardField{reference.b_N_T, reference.orbit_normal_N_unit};
+      }
+      const auto out = modes.step(in, truth.t);
       cmd.dipole_B_Am2 = out.m_B_Am2;
       if (out.handover) result.handover_s = sim::toSeconds(truth.t);
     }

@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include "bus/Convert.hpp"
+#include "components/common/ReferenceParams.hpp"
 #include "sim/DynamicsServerParams.hpp"
 #include "sim/Frames.hpp"
 
@@ -231,7 +232,6 @@ EstimatorNodeParams readParams(const bus::Scenario& scenario, const bus::NodeArg
   bus::ConfigProblems reported_by_dynamics_server;
   const auto plant = sim::readPlant(scenario, reported_by_dynamics_server);
   EstimatorNodeParams p;
-  p.reference = {plant.epoch, plant.orbit, {}, plant.field, std::nullopt};
   p.jd_epoch_utc = sim::julianDate(plant.epoch);
   auto r = scenario.componentParams(args.name, problems);
   std::string method = "mahony";
@@ -241,27 +241,7 @@ EstimatorNodeParams readParams(const bus::Scenario& scenario, const bus::NodeArg
   } else if (method != "mahony") {
     r.problem("method", "'" + method + "' is not mahony or mekf");
   }
-  // The onboard models mirror the plant's by default (an onboard computer carries the
-  // same IGRF; GNSS keeps its orbit); dipole / kepler are the cruder choices.
-  std::string reference_field = "plant";
-  r.read("reference_field", reference_field);
-  if (reference_field == "plant") {
-    if (plant.field_model == sim::FieldModel::kSphericalHarmonics) {
-      auto harmonics = plant.field_harmonics;
-      harmonics.degree = std::min(harmonics.degree, plant.field_degree);
-      p.reference.field_harmonics = harmonics;
-    }
-  } else if (reference_field != "dipole") {
-    r.problem("reference_field", "'" + reference_field + "' is not dipole or plant");
-  }
-  std::string reference_orbit = "plant";
-  r.read("reference_orbit", reference_orbit);
-  if (reference_orbit == "plant") {
-    p.reference.orbit_track = plant.orbit_track;
-    if (plant.atmosphere) p.reference.orbit_track.forces.atmosphere = *plant.atmosphere;
-  } else if (reference_orbit != "kepler") {
-    r.problem("reference_orbit", "'" + reference_orbit + "' is not kepler or plant");
-  }
+  p.reference = readReferenceModel(r, plant);
   r.read("use_magnetometer", p.filter.use_magnetometer);
   p.filter.sun_only_init = !scenario.hasComponent("magnetometer");
   r.read("kp_per_s", p.filter.kp_per_s, "1/s");

@@ -30,11 +30,13 @@ ReferenceModel::ReferenceModel(const Params& params)
 ReferenceVectors ReferenceModel::step(std::int64_t t_ns) {
   const double t_s = sim::toSeconds(t_ns);
   const double jd = jd_epoch_ + t_s / 86400.0;
-  const Eigen::Vector3d r_N = orbit_.at(t_s).r_N_m;
+  const auto state = orbit_.at(t_s);
+  const Eigen::Vector3d& r_N = state.r_N_m;
   const Eigen::Matrix3d R_EN = sim::R_EN(jd);
   ReferenceVectors out;
   const Eigen::Vector3d r_E = R_EN * r_N;
   out.b_N_T = R_EN.transpose() * (harmonics_ ? harmonics_->b_E_T(r_E) : field_.b_E_T(r_E));
+  out.orbit_normal_N_unit = r_N.cross(state.v_N_m_s).normalized();
   out.sun_N_unit =
       (sim::sunPosition_N_m(jd + sim::kTtMinusUtc_s / 86400.0) - r_N).normalized();
   return out;

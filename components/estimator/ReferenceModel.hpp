@@ -33,6 +33,7 @@ struct ReferenceModelParams {
 struct ReferenceVectors {
   Eigen::Vector3d sun_N_unit = Eigen::Vector3d::UnitX();  // [-] spacecraft -> Sun, inertial
   Eigen::Vector3d b_N_T = Eigen::Vector3d::Zero();        // [T] field at the spacecraft, inertial
+  Eigen::Vector3d orbit_normal_N_unit = Eigen::Vector3d::UnitZ();  // [-] r × v / |r × v|, inertial
 };
 
 class ReferenceModel {

@@ -31,7 +31,23 @@ Bdot::Bdot(const Params& params) : params_(params) {
   }
 }
 
+namespace {
+
+/// TRIAD (Black 1964; Shuster & Oh, "Three-axis attitude determination from vector
+/// observations", JGC 4(1), 1981, eq. 3-6): the orthonormal triad of a primary and a
+/// secondary direction.
+Eigen::Matrix3d triad(const Eigen::Vector3d& primary, const Eigen::Vector3d& secondary) {
+  Eigen::Matrix3d m;
+  m.col(0) = primary.normalized();
+  m.col(1) = m.col(0).cross(secondary).normalized();
+  m.col(2) = m.col(0).cross(m.col(1));
+  return m;
+}
+
+}  // namespace
+
 void Bdot::reset() {
+  previous_b_N_T_.reset();
   previous_b_B_T_.reset();
   b_dot_B_T_s_.reset();
 }
@@ -43,9 +59,24 @@ BdotOutput Bdot::step(const Input& in, std::int64_t t_ns) {
     return out;  // the previous sample stays: the next difference spans the gap
   }
   const double dt_s = static_cast<double>(t_ns - previous_t_ns_) * 1e-9;
-  if (previous_b_B_T_ && dt_s > params_.max_sample_gap_s) reset();
+  if (previous_b_B_T_ && (dt_s > params_.max_sample_gap_s || in.model.has_value() != previous_b_N_T_.has_value())) {
+    reset();
+  }
   if (previous_b_B_T_ && dt_s > 0.0) {
-    const Eigen::Vector3d raw = (in.b_B_T - *previous_b_B_T_) / dt_s;
+    Eigen::Vector3d raw = (in.b_B_T - *previous_b_B_T_) / dt_s;
+    if (in.model) {
+      // In body axes Ḃ = R ḃ_N − ω × B: the body's turn and the field's own. The model
+      // gives ḃ_N (same secant, same midpoint); R̂ is the TRIAD of the known axis
+      // (primary) and the field, exact once the body holds axis_B on axis_N. What is
+      // left, B × ω, sees the body's rate alone: no orbit-rate approximation
+      // (the seed's Q = B × ω0) and none of the field's uneven turn over the orbit.
+      const Eigen::Vector3d b_dot_N_T_s = (in.model->b_N_T - *previous_b_N_T_) / dt_s;
+      const Eigen::Vector3d b_mid_N_T = 0.5 * (in.model->b_N_T + *previous_b_N_T_);
+      const Eigen::Vector3d b_mid_B_T = 0.5 * (in.b_B_T + *previous_b_B_T_);
+      const Eigen::Matrix3d R_BN = triad(in.model->axis_B_unit, b_mid_B_T) *
+                                   triad(in.model->axis_N_unit, b_mid_N_T).transpose();
+      raw -= R_BN * b_dot_N_T_s;
+    }
     // Backward-Euler first-order low-pass: stable for any Δt, unity gain at DC.
     const double alpha = dt_s / (params_.filter_time_constant_s + dt_s);
     b_dot_B_T_s_ = b_dot_B_T_s_ ? Eigen::Vector3d(*b_dot_B_T_s_ + alpha * (raw - *b_dot_B_T_s_)) : raw;
@@ -57,6 +88,7 @@ BdotOutput Bdot::step(const Input& in, std::int64_t t_ns) {
   const Eigen::Vector3d b_mid_B_T = previous_b_B_T_ && dt_s > 0.0 ? Eigen::Vector3d(0.5 * (in.b_B_T + *previous_b_B_T_)) : in.b_B_T;
   if (!previous_b_B_T_ || dt_s > 0.0) {
     previous_b_B_T_ = in.b_B_T;
+    previous_b_N_T_ = in.model ? std::optional<Eigen::Vector3d>(in.model->b_N_T) : std::nullopt;
     previous_t_ns_ = t_ns;
   }
   if (!b_dot_B_T_s_) return out;

@@ -30,9 +30,20 @@ struct BdotParams {
   std::vector<std::string> validate() const;
 };
 
+/// What an onboard orbit and field model know of the field's own motion: the
+/// model field and one direction known both in inertial and in body axes.
+struct BdotModelField {
+  Eigen::Vector3d b_N_T = Eigen::Vector3d::Zero();             // [T] model field at the spacecraft, inertial
+  Eigen::Vector3d axis_N_unit = Eigen::Vector3d::UnitZ();      // [-] a direction in inertial axes, unit
+  Eigen::Vector3d axis_B_unit = Eigen::Vector3d::UnitZ();      // [-] the same direction in body axes, unit
+};
+
 struct BdotInput {
   Eigen::Vector3d b_B_T = Eigen::Vector3d::Zero();  // [T] measured field, body axes
   bool b_valid = false;                             // field usable
+  /// When set, Ḃ loses the field's own turn: Ḃ − R̂ ḃ_N = B × ω (see Bdot::step).
+  /// Given at every step or at none: a step without it restarts the difference.
+  std::optional<BdotModelField> model;
 };
 
 struct BdotOutput {
@@ -79,6 +90,7 @@ class Bdot {
  private:
   Params params_;
   std::optional<Eigen::Vector3d> previous_b_B_T_;
+  std::optional<Eigen::Vector3d> previous_b_N_T_;  // model field at the previous sample
   std::int64_t previous_t_ns_ = 0;
   std::optional<Eigen::Vector3d> b_dot_B_T_s_;  // low-passed
 };

@@ -80,7 +80,12 @@ MagneticModesOutput MagneticModes::step(const Input& in, std::int64_t t_ns) {
     out.h_below_stop = h < params_.unload.h_stop_Nms;
     return out;
   }
-  const auto b = (mode_ == MagneticMode::kDetumble ? detumble_ : spin_).step({in.b_B_T, in.b_valid}, t_ns);
+  BdotInput law_in{in.b_B_T, in.b_valid, std::nullopt};
+  if (mode_ == MagneticMode::kSpinCapture && params_.spin.field_turn == FieldTurn::kModel) {
+    if (!in.onboard) return out;  // without the model the law's reference is wrong: coils off
+    law_in.model = BdotModelField{in.onboard->b_N_T, in.onboard->orbit_normal_N_unit, params_.spin.spin_axis_B};
+  }
+  const auto b = (mode_ == MagneticMode::kDetumble ? detumble_ : spin_).step(law_in, t_ns);
   out.m_B_Am2 = b.m_B_Am2;
   out.active = b.active;
   out.saturated = b.saturated;

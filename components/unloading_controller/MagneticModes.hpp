@@ -35,10 +35,17 @@ struct MagneticModesParams {
   std::vector<std::string> validate() const;
 };
 
+/// Onboard orbit and field model at this step (spin capture with FieldTurn::kModel).
+struct OnboardField {
+  Eigen::Vector3d b_N_T = Eigen::Vector3d::Zero();                    // [T] model field, inertial
+  Eigen::Vector3d orbit_normal_N_unit = Eigen::Vector3d::UnitZ();     // [-] r × v / |r × v|, inertial
+};
+
 struct MagneticModesInput {
   Eigen::Vector4d wheel_speed_rad_s = Eigen::Vector4d::Zero();  // [rad/s] tachometer speeds (kUnload)
   Eigen::Vector3d b_B_T = Eigen::Vector3d::Zero();              // [T] measured field, body axes
   bool b_valid = false;                                         // field usable
+  std::optional<OnboardField> onboard;                          // needed by kSpinCapture with kModel
 };
 
 struct MagneticModesOutput {

@@ -20,8 +20,9 @@ BdotParams spinCaptureLaw(const SpinCaptureParams& params, const Eigen::Vector3d
   BdotParams law;
   law.shape = BdotShape::kBangBang;
   law.max_dipole_Am2 = max_dipole_Am2;
-  law.omega_ref_B_rad_s =
-      (params.spin_rate_rad_s - params.field_turn_per_orbit_rate * params.orbit_rate_rad_s) * params.spin_axis_B;
+  const double field_turn_rad_s =
+      params.field_turn == FieldTurn::kModel ? 0.0 : params.field_turn_per_orbit_rate * params.orbit_rate_rad_s;
+  law.omega_ref_B_rad_s = (params.spin_rate_rad_s - field_turn_rad_s) * params.spin_axis_B;
   return law;
 }
 

@@ -39,17 +39,33 @@ namespace flatsat::unloading_controller {
 ///     orbital term, 2ω0 high (6 %). The closed-loop tests ([bdot]) and `flatsat
 ///     study spin` check the rate against ω_s itself.
 /// Classic B-dot is ω_ref = 0: the rate goes to Ω_f, ≈ 2ω0 about n.
+///
+/// Where the field's turn comes from (`field_turn`):
+///  - kOrbitRate, the seed's: Ω_f ≈ κω0 n with n taken as a. The real Ω_f is uneven
+///    (1.5ω0 to 3ω0 along n, and across n where the dipole's tilt and the higher
+///    harmonics bend the field), and the bang-bang law follows it: on s4_spin.yaml
+///    (IGRF degree 10) the spin axis wanders 0-9 deg and the rate ±4 % within each
+///    orbit, and 5 deg / 5 % are held only from about 5.9 orbits on (docs/magnetic_control.md).
+///  - kModel: the onboard orbit and field model give ḃ_N, and Bdot takes the field's
+///    whole turn out of Ḃ (R̂ from TRIAD of n ↔ a and b_N ↔ B, exact at the rest
+///    point a = n). Then P = B × (ω − ω_s a): ω_ref = ω_s a. Away from the rest
+///    point R̂ is off by the tilt of a from n, and that residual, like the seed's
+///    κω0(n − a), is what turns a onto n. Sensors are still a magnetometer alone.
+enum class FieldTurn { kOrbitRate, kModel };
+
 struct SpinCaptureParams {
   Eigen::Vector3d spin_axis_B = Eigen::Vector3d::UnitZ();  // [-] chosen body axis a, unit
   double spin_rate_rad_s = 0.035;                           // [rad/s] ω_s, inertial, about n, finite
   double orbit_rate_rad_s = 1.1e-3;                         // [rad/s] ω0 = 2π / period, > 0
-  double field_turn_per_orbit_rate = 2.0;                   // [-] Ω_f / ω0 (2 for near-polar orbits), finite
+  double field_turn_per_orbit_rate = 2.0;                   // [-] Ω_f / ω0 (2 for near-polar orbits), finite; kOrbitRate
+  FieldTurn field_turn = FieldTurn::kOrbitRate;             // [-] where the field's own turn comes from
 
   /// Every violation as "field: reason"; empty when valid.
   std::vector<std::string> validate() const;
 };
 
-/// The bang-bang corrected B-dot above for coils of max_dipole_Am2 [A m²].
+/// The bang-bang corrected B-dot above for coils of max_dipole_Am2 [A m²]; with
+/// kModel, its steps need BdotInput::model (n and the model field).
 BdotParams spinCaptureLaw(const SpinCaptureParams& params, const Eigen::Vector3d& max_dipole_Am2);
 
 }  // namespace flatsat::unloading_controller

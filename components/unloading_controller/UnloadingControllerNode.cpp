@@ -7,6 +7,7 @@
 #include <spdlog/spdlog.h>
 
 #include "bus/Convert.hpp"
+#include "components/common/ReferenceParams.hpp"
 #include "sim/DynamicsServerParams.hpp"
 #include "sim/KeplerOrbit.hpp"
 
@@ -80,6 +81,7 @@ UnloadingControllerNode::UnloadingControllerNode(bus::Bus& bus, bus::NodeOptions
       mode_commands_(bus, bus::topics::kUnloadingModeCmd, [this](const msg::ModeCmd& c) { receive(c); }),
       modes_(params.modes),
       arbiter_(params.modes.unload.max_dipole_Am2) {
+  if (params.onboard) onboard_.emplace(*params.onboard);
   if (params.field_source == FieldSource::kMagnetometer) {
     magnetometer_ = &addInput(bus::topics::kMagnetometer);
   } else {
@@ -130,6 +132,10 @@ void UnloadingControllerNode::step(const bus::StepContext& ctx) {
     const auto field = field_estimate_->at(ctx.step);
     in.b_B_T = bus::vec3(field.b_body_T());
     in.b_valid = field.valid();
+  }
+  if (onboard_) {
+    const auto reference = onboard_->step(ctx.sim_time_ns);
+    in.onboard = OnboardField{reference.b_N_T, reference.orbit_normal_N_unit};
   }
   const auto out = modes_.step(in, ctx.sim_time_ns);
   if (out.handover) {
@@ -194,7 +200,16 @@ UnloadingControllerNodeParams readParams(const bus::Scenario& scenario, const bu
   s.read("spin_axis_body", p.spin.spin_axis_B, "-");
   s.read("spin_rate_rad_s", p.spin.spin_rate_rad_s, "rad/s");
   s.read("field_turn_per_orbit_rate", p.spin.field_turn_per_orbit_rate, "-");
+  std::string field_turn = "orbit_rate";
+  s.read("field_turn", field_turn);
+  if (field_turn == "model") {
+    p.spin.field_turn = FieldTurn::kModel;
+  } else if (field_turn != "orbit_rate") {
+    s.problem("field_turn", "'" + field_turn + "' is neither orbit_rate nor model");
+  }
   s.finish();
+  const auto onboard = readReferenceModel(r, plant);
+  if (p.spin.field_turn == FieldTurn::kModel) node.onboard = onboard;
 
   std::string source = "magnetometer";
   r.read("field_source", source);
@@ -204,6 +219,7 @@ UnloadingControllerNodeParams readParams(const bus::Scenario& scenario, const bu
     r.problem("field_source", "must be magnetometer or s0_estimate, not \"" + source + "\"");
   }
   r.problems(p.validate());
+  if (node.onboard) r.problems(node.onboard->validate());
   r.finish();
   return node;
 }

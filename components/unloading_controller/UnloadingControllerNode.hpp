@@ -9,6 +9,7 @@
 #include "bus/NodeMain.hpp"
 #include "components/common/LastValid.hpp"
 #include "components/unloading_controller/CoilArbiter.hpp"
+#include "components/estimator/ReferenceModel.hpp"
 #include "components/unloading_controller/MagneticModes.hpp"
 
 namespace flatsat::unloading_controller {
@@ -22,6 +23,8 @@ enum class FieldSource {
 struct UnloadingControllerNodeParams {
   MagneticModesParams modes;
   FieldSource field_source = FieldSource::kMagnetometer;
+  /// Onboard orbit and field model; set when spin capture takes the field's turn from it.
+  std::optional<estimator::ReferenceModelParams> onboard;
 };
 
 /// The mode a command asks for; nothing when its mode is not one of
@@ -60,12 +63,15 @@ class UnloadingControllerNode final : public bus::Component {
   bus::ReaderOf<bus::topics::kUnloadingModeCmd> mode_commands_;
   MagneticModes modes_;
   CoilArbiter arbiter_;
+  std::optional<estimator::ReferenceModel> onboard_;
 };
 
 /// components.<name>: the unloading keys (gain_per_s, h_*), `mode:`, a
 /// `detumble:` and a `spin_capture:` section and the handover; the wheel
 /// geometry from spacecraft.wheels, the coil limits from spacecraft.torquers
-/// and the orbital rate from the orbit; `field_source: magnetometer | s0_estimate`.
+/// and the orbital rate from the orbit; `field_source: magnetometer | s0_estimate`;
+/// the onboard models (`reference_field`, `reference_orbit`) for
+/// `spin_capture.field_turn: model`.
 UnloadingControllerNodeParams readParams(const bus::Scenario& scenario, const bus::NodeArgs& args,
                                bus::ConfigProblems& problems);
 

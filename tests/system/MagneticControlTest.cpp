@@ -4,7 +4,9 @@
 #include <catch2/catch.hpp>
 
 #include <filesystem>
+#include <cstdio>
 #include <fstream>
+#include <sstream>
 
 #include <nlohmann/json.hpp>
 
@@ -47,13 +49,39 @@ TEST_CASE("B-dot detumbles the rig from 10 deg/s below 0.2 deg/s within 3 orbits
   CHECK(s["coil_duty"].get<double>() <= 1.0);
 }
 
-TEST_CASE("S4 spin capture ends with body z on the orbit normal at 2 deg/s", "[system][bdot]") {
-  // With IGRF to degree 10 and gravity gradient the axis still swings to ~7 deg
-  // once per orbit in orbit 5 (docs/magnetic_control.md), so the issue's "within
-  // 5 orbits" is not claimed here: only the captured state at the end of 6 orbits.
+TEST_CASE("S4 spin capture holds body z within 5 deg of the orbit normal at 2 deg/s within 5 orbits", "[system][bdot]") {
   const auto s = runScenario("s4_spin.yaml", "s4spin", "--seed 3");
   INFO(s.dump(2));
   REQUIRE_FALSE(s["time_to_capture_s"].is_null());
+  CHECK(s["time_to_capture_s"].get<double>() <= 5.0 * 5740.0);  // captured and held to the end (6 orbits)
   CHECK(s["spin_axis_error_deg"].get<double>() < 5.0);
   CHECK(s["spin_rate_error_pct"].get<double>() < 5.0);
+  CHECK(s["coil_duty"].get<double>() > 0.0);
+}
+
+TEST_CASE("S4 spin capture: all 50 seeded tumbles captured within 5 orbits", "[system][bdot]") {
+  // `flatsat study spin` runs s4_spin.yaml's plant, magnetometer and controller
+  // without DDS; each row is judged on the truth over the whole run.
+  const auto command = test::runCommand(kFlatsat + " study spin --cases 50");
+  INFO(command.output);
+  REQUIRE(command.exit_code == 0);
+  std::istringstream lines(command.output);
+  std::string line;
+  int rows = 0;
+  while (std::getline(lines, line)) {
+    int seed = 0;
+    double handover = 0, capture = 0, orbits = 0, axis = 0, rate = 0, axis5 = 0, rate5 = 0, duty = 0;
+    if (std::sscanf(line.c_str(), "| %d | %lf | %lf | %lf | %lf | %lf | %lf | %lf | %lf |", &seed, &handover, &capture,
+                    &orbits, &axis, &rate, &axis5, &rate5, &duty) != 9) {
+      continue;
+    }
+    ++rows;
+    INFO(line);
+    CHECK(orbits <= 5.0);
+    CHECK(axis5 < 5.0);  // worst over orbit 5
+    CHECK(rate5 < 5.0);
+    CHECK(axis < 5.0);
+    CHECK(rate < 5.0);
+  }
+  CHECK(rows == 50);
 }
