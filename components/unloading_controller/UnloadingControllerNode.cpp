@@ -82,11 +82,13 @@ UnloadingControllerNode::UnloadingControllerNode(bus::Bus& bus, bus::NodeOptions
       modes_(params.modes),
       arbiter_(params.modes.unload.max_dipole_Am2) {
   if (params.onboard) onboard_.emplace(*params.onboard);
-  if (params.field_source == FieldSource::kMagnetometer) {
-    magnetometer_ = &addInput(bus::topics::kMagnetometer);
-  } else {
-    field_estimate_ = &addInput(bus::topics::kFieldEstimate);
-    coil_request_ = &addInput(bus::topics::kCoilRequest);
+  switch (params.field_source) {
+    case FieldSource::kMagnetometer: magnetometer_ = &addInput(bus::topics::kMagnetometer); break;
+    case FieldSource::kS0Estimate:
+      field_estimate_ = &addInput(bus::topics::kFieldEstimate);
+      coil_request_ = &addInput(bus::topics::kCoilRequest);
+      break;
+    case FieldSource::kModelAttitude: attitude_ = &addInput(bus::topics::kAttitudeEstimate); break;
   }
 }
 
@@ -124,18 +126,25 @@ void UnloadingControllerNode::step(const bus::StepContext& ctx) {
   const auto reading = tach_.at(ctx.step);
   const auto& tach = last_tach_.update(reading);
   MagneticModesInput in{bus::vec4(tach.wheel_speed_rad_s()), {}, false};
+  if (onboard_) {
+    const auto reference = onboard_->step(ctx.sim_time_ns);
+    in.onboard = OnboardField{reference.b_N_T, reference.orbit_normal_N_unit};
+  }
   if (magnetometer_ != nullptr) {
     const auto field = magnetometer_->at(ctx.step);
     in.b_B_T = bus::vec3(field.b_body_T());
     in.b_valid = field.valid() && !field.saturated();
-  } else {
+  } else if (field_estimate_ != nullptr) {
     const auto field = field_estimate_->at(ctx.step);
     in.b_B_T = bus::vec3(field.b_body_T());
     in.b_valid = field.valid();
-  }
-  if (onboard_) {
-    const auto reference = onboard_->step(ctx.sim_time_ns);
-    in.onboard = OnboardField{reference.b_N_T, reference.orbit_normal_N_unit};
+  } else {
+    // The model field in body axes through the estimated attitude: as good as the
+    // two together, and never taken from an estimate that says it is not valid.
+    const auto estimate = attitude_->at(ctx.step);
+    const Eigen::Quaterniond q_NB = bus::quat(estimate.q_inertial_body()).normalized();
+    in.b_B_T = q_NB.conjugate() * in.onboard->b_N_T;
+    in.b_valid = estimate.valid() && in.b_B_T.allFinite();
   }
   const auto out = modes_.step(in, ctx.sim_time_ns);
   if (out.handover) {
@@ -209,14 +218,18 @@ UnloadingControllerNodeParams readParams(const bus::Scenario& scenario, const bu
   }
   s.finish();
   const auto onboard = readReferenceModel(r, plant);
-  if (p.spin.field_turn == FieldTurn::kModel) node.onboard = onboard;
 
   std::string source = "magnetometer";
   r.read("field_source", source);
   if (source == "s0_estimate") {
     node.field_source = FieldSource::kS0Estimate;
+  } else if (source == "model_attitude") {
+    node.field_source = FieldSource::kModelAttitude;
   } else if (source != "magnetometer") {
-    r.problem("field_source", "must be magnetometer or s0_estimate, not \"" + source + "\"");
+    r.problem("field_source", "must be magnetometer, s0_estimate or model_attitude, not \"" + source + "\"");
+  }
+  if (p.spin.field_turn == FieldTurn::kModel || node.field_source == FieldSource::kModelAttitude) {
+    node.onboard = onboard;
   }
   r.problems(p.validate());
   if (node.onboard) r.problems(node.onboard->validate());

@@ -18,12 +18,14 @@ namespace flatsat::unloading_controller {
 enum class FieldSource {
   kMagnetometer,  ///< flatsat/magnetometer
   kS0Estimate,    ///< flatsat/field_estimate (seed S0, no magnetometer); serves coil requests
+  kModelAttitude, ///< onboard field model turned into body axes by flatsat/attitude_estimate
 };
 
 struct UnloadingControllerNodeParams {
   MagneticModesParams modes;
   FieldSource field_source = FieldSource::kMagnetometer;
-  /// Onboard orbit and field model; set when spin capture takes the field's turn from it.
+  /// Onboard orbit and field model; set for kModelAttitude and when spin capture
+  /// takes the field's turn from it.
   std::optional<estimator::ReferenceModelParams> onboard;
 };
 
@@ -54,6 +56,7 @@ class UnloadingControllerNode final : public bus::Component {
   bus::InputOf<bus::topics::kMagnetometer>* magnetometer_ = nullptr;    // kMagnetometer
   bus::InputOf<bus::topics::kFieldEstimate>* field_estimate_ = nullptr;  // kS0Estimate
   bus::InputOf<bus::topics::kCoilRequest>* coil_request_ = nullptr;      // kS0Estimate
+  bus::InputOf<bus::topics::kAttitudeEstimate>* attitude_ = nullptr;     // kModelAttitude
   bus::WriterOf<bus::topics::kDipoleCmd>& command_ = addOutput(bus::topics::kDipoleCmd);
   bus::WriterOf<bus::topics::kCoilWindow>& coil_window_ = addOutput(bus::topics::kCoilWindow);
   std::mutex mode_mutex_;
@@ -69,9 +72,10 @@ class UnloadingControllerNode final : public bus::Component {
 /// components.<name>: the unloading keys (gain_per_s, h_*), `mode:`, a
 /// `detumble:` and a `spin_capture:` section and the handover; the wheel
 /// geometry from spacecraft.wheels, the coil limits from spacecraft.torquers
-/// and the orbital rate from the orbit; `field_source: magnetometer | s0_estimate`;
-/// the onboard models (`reference_field`, `reference_orbit`) for
-/// `spin_capture.field_turn: model`.
+/// and the orbital rate from the orbit; `field_source: magnetometer | s0_estimate |
+/// model_attitude`;
+/// the onboard models (`reference_field`, `reference_orbit`) for model_attitude
+/// and `spin_capture.field_turn: model`.
 UnloadingControllerNodeParams readParams(const bus::Scenario& scenario, const bus::NodeArgs& args,
                                bus::ConfigProblems& problems);
 
