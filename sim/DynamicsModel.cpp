@@ -76,17 +76,29 @@ void DynamicsModel::step(const ActuatorCommands& cmd, SimTime t_next) {
   Applied applied;
   applied.wheel_torque_Nm = body_.limitMotorTorque(state_, cmd.wheel_torque_Nm);
   applied.dipole_B_Am2 = clipDipole(cmd.dipole_B_Am2);
+  const double quiet = cmd.dipole_quiet_fraction;
+  applied.dipole_on_fraction = quiet > 0.0 && quiet < 1.0 ? 1.0 - quiet : 1.0;
   applied.thrusters = thrusters_.fire(cmd.thruster_on_time_s, cmd.thruster_gimbal_rad, dt_s);
   if (flaps_) applied.flap_angle_rad = flaps_->limitAngles(cmd.flap_angle_rad);
   setFlaps(applied.flap_angle_rad);
   const Environment next = environmentAt(t1_s);
-  const auto external_torque = [&](double t_s, const RigidBodyState& x) -> Eigen::Vector3d {
-    const Environment env = interpolated(env_, next, (t_s - t0_s) / dt_s);
-    return torquesAt(env, x.q_NB, applied.dipole_B_Am2).total_B_Nm() + params_.disturbance_torque_B_Nm +
-           applied.thrusters.torque_B_Nm;
+  const auto torque_with = [&](const Eigen::Vector3d& dipole_B_Am2) {
+    return [&, dipole_B_Am2](double t_s, const RigidBodyState& x) -> Eigen::Vector3d {
+      const Environment env = interpolated(env_, next, (t_s - t0_s) / dt_s);
+      return torquesAt(env, x.q_NB, dipole_B_Am2).total_B_Nm() + params_.disturbance_torque_B_Nm +
+             applied.thrusters.torque_B_Nm;
+    };
   };
   const Eigen::Quaterniond q_start = state_.q_NB;
-  state_ = body_.propagate(state_, t0_s, dt_s, params_.substeps, applied.wheel_torque_Nm, external_torque);
+  // A quiet part switches the coils off: the step is integrated in two pieces so
+  // that no integrator stage straddles the switch.
+  const double on_s = applied.dipole_on_fraction * dt_s;
+  state_ = body_.propagate(state_, t0_s, on_s, params_.substeps, applied.wheel_torque_Nm,
+                           torque_with(applied.dipole_B_Am2));
+  if (on_s < dt_s) {
+    state_ = body_.propagate(state_, t0_s + on_s, dt_s - on_s, params_.substeps, applied.wheel_torque_Nm,
+                             torque_with(Eigen::Vector3d::Zero()));
+  }
   t_ = t_next;
   env_ = next;
   const Eigen::Vector3d& f_B = applied.thrusters.force_B_N;
@@ -191,6 +203,7 @@ void DynamicsModel::updateTruth(const Applied& applied, double substep_s) {
   truth.illumination = env.illumination;
   truth.density_kg_m3 = env.density_kg_m3;
   truth.dipole_applied_B_Am2 = applied.dipole_B_Am2;
+  truth.dipole_at_t_B_Am2 = applied.dipole_on_fraction < 1.0 ? Eigen::Vector3d::Zero() : applied.dipole_B_Am2;
   truth.tau_gravity_gradient_B_Nm = torques.gravity_gradient_B_Nm;
   truth.tau_magnetic_B_Nm = torques.magnetic_B_Nm;
   truth.tau_disturbance_B_Nm = params_.disturbance_torque_B_Nm;

@@ -91,6 +91,7 @@ class DynamicsModel {
   struct Applied {
     Eigen::Vector4d wheel_torque_Nm = Eigen::Vector4d::Zero();
     Eigen::Vector3d dipole_B_Am2 = Eigen::Vector3d::Zero();
+    double dipole_on_fraction = 1.0;  // [-] of the step, from its start
     Eigen::Vector4d flap_angle_rad = Eigen::Vector4d::Zero();
     ThrusterOutput thrusters;
   };

@@ -46,6 +46,7 @@ msg::TruthState toMessage(const Truth& truth, int wheel_count, const bus::StepCo
   put(m.flap_angle_rad(), truth.flap_angle_applied_rad);
   put(m.f_thruster_body_N(), truth.f_thruster_B_N);
   put(m.tau_thruster_body_Nm(), truth.tau_thruster_B_Nm);
+  put(m.dipole_at_sample_body_Am2(), truth.dipole_at_t_B_Am2);
   return m;
 }
 
@@ -85,6 +86,7 @@ void DynamicsServerNode::advance(const bus::StepContext& ctx) {
   if (dipole_cmd_ != nullptr && dipole_cmd_->hasAny(ctx.step)) {
     const auto dipole = dipole_cmd_->at(ctx.step);
     cmd.dipole_B_Am2 = bus::vec3(dipole.m_body_Am2());
+    cmd.dipole_quiet_fraction = dipole.quiet_fraction();
     dipole_cmd_age_steps_ = static_cast<std::int64_t>(ctx.step - dipole.header().step());
   }
   if (thruster_cmd_ != nullptr && thruster_cmd_->hasAny(ctx.step)) {

@@ -14,6 +14,7 @@ namespace flatsat::sim {
 struct ActuatorCommands {
   Eigen::Vector4d wheel_torque_Nm = Eigen::Vector4d::Zero();  // [N m] motor torque on each wheel
   Eigen::Vector3d dipole_B_Am2 = Eigen::Vector3d::Zero();     // [A m²] magnetic torquer dipole, body axes
+  double dipole_quiet_fraction = 0.0;  // [-] coils off over this last fraction of the step; outside [0, 1) (or NaN): 0
   ThrusterVector thruster_on_time_s = ThrusterVector::Zero();  // [s] on-time of each thruster within the step
   ThrusterGimbals thruster_gimbal_rad = ThrusterGimbals::Zero();  // [rad] gimbal angles (1, 2) per thruster
   Eigen::Vector4d flap_angle_rad = Eigen::Vector4d::Zero();   // [rad] θ1..θ4 of the S2 flaps (Flaps.hpp)
@@ -39,6 +40,7 @@ struct Truth {
   double illumination = 0.0;                                            // [-] 1 Sun, 0 umbra
   double density_kg_m3 = 0.0;                                           // [kg/m³] air density at the spacecraft
   Eigen::Vector3d dipole_applied_B_Am2 = Eigen::Vector3d::Zero();       // [A m²] after clipping
+  Eigen::Vector3d dipole_at_t_B_Am2 = Eigen::Vector3d::Zero();          // [A m²] on at t itself (zero after a quiet part)
   Eigen::Vector3d tau_gravity_gradient_B_Nm = Eigen::Vector3d::Zero();  // [N m]
   Eigen::Vector3d tau_magnetic_B_Nm = Eigen::Vector3d::Zero();          // [N m] dipole × b_B
   Eigen::Vector3d tau_disturbance_B_Nm = Eigen::Vector3d::Zero();       // [N m] constant residual

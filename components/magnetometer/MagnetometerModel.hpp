@@ -19,22 +19,30 @@ struct MagnetometerParams {
   double quantum_T = 0.0;                                    // [T] ADC step, 0 = continuous, >= 0
   double range_T = 1.0e-4;                                   // [T] full scale: each axis clips at ±range_T, > 0
   std::uint64_t seed = 1;                                    // [-] noise seed, any value
+  Eigen::Vector3d misalignment_rad = Eigen::Vector3d::Zero(); // [rad] rotation vector body → sensor axes, |·| < π
+  Eigen::Matrix3d coil_coupling_T_per_Am2 = Eigen::Matrix3d::Zero();  // [T/(A m²)] field the torquers put on the sensor per unit dipole, finite
+  bool blank_while_coils_on = false;                         // [-] flag a sample taken with a coil on as blanked
 
   /// Every violation as "field: reason"; empty when valid.
   std::vector<std::string> validate() const;
 };
 
-/// [T] true field in body axes.
 struct MagnetometerInput {
-  Eigen::Vector3d b_B_T = Eigen::Vector3d::Zero();
+  Eigen::Vector3d b_B_T = Eigen::Vector3d::Zero();         // [T] true geomagnetic field, body axes
+  Eigen::Vector3d dipole_B_Am2 = Eigen::Vector3d::Zero();  // [A m²] torquer dipole on at the sample instant
 };
 
 struct MagnetometerOutput {
   Eigen::Vector3d b_B_T = Eigen::Vector3d::Zero();  // [T] measured field in body axes
   bool saturated = false;                           // at least one axis clipped at ±range_T
+  bool blanked = false;                             // blank_while_coils_on and a coil was on: not a measurement
 };
 
-/// b_meas = quantize(scale ⊙ b + bias + noise), clipped per axis to the range.
+/// b_meas = quantize(scale ⊙ (R_mis (b + C m)) + bias + noise), clipped per axis to
+/// the range: R_mis turns body into sensor axes (the mounting error, reported in body
+/// axes as the rig has no other frame for it), C m is the torquers' own field at the
+/// sensor. Blanking (the usual flight answer to C m, with the unloading controller's
+/// quiet part) marks the sample instead of hiding it.
 class MagnetometerModel {
  public:
   using Params = MagnetometerParams;

@@ -12,6 +12,9 @@ EmulatorParams<MagnetometerParams> readParams(const bus::Scenario& scenario, con
     r.read("scale_factor", m.scale_factor, "-");
     r.read("quantum_T", m.quantum_T, "T");
     r.read("range_T", m.range_T, "T");
+    r.read("misalignment_rad", m.misalignment_rad, "rad");
+    r.read("coil_coupling_T_per_Am2", m.coil_coupling_T_per_Am2, "T/(A m^2)");
+    r.read("blank_while_coils_on", m.blank_while_coils_on);
       });
 }
 

@@ -8,14 +8,14 @@
 namespace flatsat::magnetometer {
 
 inline MagnetometerInput toInput(const msg::TruthState& truth) {
-  return {bus::vec3(truth.b_body_T())};
+  return {bus::vec3(truth.b_body_T()), bus::vec3(truth.dipole_at_sample_body_Am2())};
 }
 
 inline msg::MagnetometerReading toMessage(const MagnetometerOutput& out) {
   msg::MagnetometerReading m;
   bus::put(m.b_body_T(), out.b_B_T);
   m.saturated(out.saturated);
-  m.valid(true);  // the fault layer may clear it
+  m.valid(!out.blanked);  // the fault layer may clear it too
   return m;
 }
 

@@ -80,7 +80,8 @@ UnloadingControllerNode::UnloadingControllerNode(bus::Bus& bus, bus::NodeOptions
     : Component(bus, std::move(options)),
       mode_commands_(bus, bus::topics::kUnloadingModeCmd, [this](const msg::ModeCmd& c) { receive(c); }),
       modes_(params.modes),
-      arbiter_(params.modes.unload.max_dipole_Am2) {
+      arbiter_(params.modes.unload.max_dipole_Am2),
+      quiet_fraction_(params.quiet_fraction) {
   if (params.onboard) onboard_.emplace(*params.onboard);
   switch (params.field_source) {
     case FieldSource::kMagnetometer: magnetometer_ = &addInput(bus::topics::kMagnetometer); break;
@@ -157,6 +158,8 @@ void UnloadingControllerNode::step(const bus::StepContext& ctx) {
   auto message = toMessage(out);
   bus::put(message.m_body_Am2(), coils.m_B_Am2);
   message.active(out.active && !coils.window_active);
+  // A requested window (seed S0) is a known dipole over known times: never shortened.
+  message.quiet_fraction(coils.window_active ? 0.0 : quiet_fraction_);
   message.header(bus::makeHeader(ctx, name()));
   command_.write(message);
   auto window = toMessage(coils.report);
@@ -221,6 +224,10 @@ UnloadingControllerNodeParams readParams(const bus::Scenario& scenario, const bu
 
   std::string source = "magnetometer";
   r.read("field_source", source);
+  r.read("quiet_fraction", node.quiet_fraction, "-");
+  if (!(node.quiet_fraction >= 0.0 && node.quiet_fraction < 1.0)) {
+    r.problem("quiet_fraction", "must be in [0, 1)");
+  }
   if (source == "s0_estimate") {
     node.field_source = FieldSource::kS0Estimate;
   } else if (source == "model_attitude") {

@@ -24,6 +24,9 @@ enum class FieldSource {
 struct UnloadingControllerNodeParams {
   MagneticModesParams modes;
   FieldSource field_source = FieldSource::kMagnetometer;
+  /// [-] coils off over this last fraction of every step the laws drive them, so the
+  /// magnetometer samples the Earth's field alone (duty-cycling), in [0, 1).
+  double quiet_fraction = 0.0;
   /// Onboard orbit and field model; set for kModelAttitude and when spin capture
   /// takes the field's turn from it.
   std::optional<estimator::ReferenceModelParams> onboard;
@@ -66,6 +69,7 @@ class UnloadingControllerNode final : public bus::Component {
   bus::ReaderOf<bus::topics::kUnloadingModeCmd> mode_commands_;
   MagneticModes modes_;
   CoilArbiter arbiter_;
+  double quiet_fraction_;
   std::optional<estimator::ReferenceModel> onboard_;
 };
 

@@ -128,3 +128,63 @@ TEST_CASE("Magnetometer params reject bad values", "[components][magnetometer]")
   CHECK(errors[4].rfind("range_T:", 0) == 0);
   CHECK_THROWS_WITH(MagnetometerModel(p), Catch::Matchers::Contains("range_T: must be finite and > 0"));
 }
+
+TEST_CASE("Magnetometer misalignment turns the field into the sensor's axes", "[components][magnetometer]") {
+  // Sensor axes turned by +10° about body z: a body-x field shows at -10° in
+  // the sensor's x-y plane (a passive rotation), with its magnitude kept.
+  MagnetometerParams p = noiseFree();
+  const double angle = 10.0 * M_PI / 180.0;
+  p.misalignment_rad = Eigen::Vector3d(0.0, 0.0, angle);
+  MagnetometerModel mag(p);
+  const double b = 3.0e-5;
+  const auto out = mag.step({Eigen::Vector3d(b, 0.0, 0.0)}, 0);
+  CHECK(out.b_B_T.x() == Approx(b * std::cos(angle)).epsilon(1e-12));
+  CHECK(out.b_B_T.y() == Approx(-b * std::sin(angle)).epsilon(1e-12));
+  CHECK(std::abs(out.b_B_T.z()) < 1e-20);
+  const auto general = mag.step({kFieldLeo_B_T}, 0);
+  CHECK(general.b_B_T.norm() == Approx(kFieldLeo_B_T.norm()).epsilon(1e-12));
+  CHECK(general.b_B_T.z() == Approx(kFieldLeo_B_T.z()).epsilon(1e-12));  // the rotation axis
+}
+
+TEST_CASE("Magnetometer sees the torquers' own field and can blank it", "[components][magnetometer]") {
+  MagnetometerParams p = noiseFree();
+  // 50 nT per A m² on the coil's own axis, 5 nT across: a compact bus.
+  p.coil_coupling_T_per_Am2 = Eigen::Matrix3d::Constant(5e-9);
+  p.coil_coupling_T_per_Am2.diagonal().setConstant(5e-8);
+  const Eigen::Vector3d m(10.0, 0.0, -4.0);
+  SECTION("unblanked, the coupling adds C m to the reading") {
+    MagnetometerModel mag(p);
+    const auto on = mag.step({kFieldLeo_B_T, m}, 0);
+    const Eigen::Vector3d expected = kFieldLeo_B_T + Eigen::Vector3d(5e-7 - 2e-8, 5e-8 - 2e-8, 5e-8 - 2e-7);
+    CHECK((on.b_B_T - expected).norm() < 1e-18);
+    CHECK_FALSE(on.blanked);
+    CHECK((mag.step({kFieldLeo_B_T, Eigen::Vector3d::Zero()}, 1).b_B_T - kFieldLeo_B_T).norm() < 1e-18);
+  }
+  SECTION("blanking marks every sample taken with a coil on, and only those") {
+    p.blank_while_coils_on = true;
+    MagnetometerModel mag(p);
+    CHECK(mag.step({kFieldLeo_B_T, m}, 0).blanked);
+    CHECK(mag.step({kFieldLeo_B_T, Eigen::Vector3d(0.0, 1e-3, 0.0)}, 1).blanked);
+    const auto quiet = mag.step({kFieldLeo_B_T, Eigen::Vector3d::Zero()}, 2);
+    CHECK_FALSE(quiet.blanked);
+    CHECK((quiet.b_B_T - kFieldLeo_B_T).norm() < 1e-18);
+  }
+}
+
+TEST_CASE("Magnetometer params reject a half-turn misalignment and a non-finite coupling", "[components][magnetometer]") {
+  MagnetometerParams p;
+  p.misalignment_rad = Eigen::Vector3d(0.0, M_PI, 0.0);
+  p.coil_coupling_T_per_Am2(1, 2) = std::numeric_limits<double>::quiet_NaN();
+  const auto errors = p.validate();
+  const auto has = [&](const std::string& prefix) {
+    for (const auto& e : errors) {
+      if (e.rfind(prefix, 0) == 0) return true;
+    }
+    return false;
+  };
+  CHECK(has("misalignment_rad: "));
+  CHECK(has("coil_coupling_T_per_Am2: "));
+  p = MagnetometerParams{};
+  p.misalignment_rad = Eigen::Vector3d(0.01, -0.02, 0.005);
+  CHECK(p.validate().empty());
+}

@@ -252,3 +252,35 @@ TEST_CASE("DynamicsModel with every model fitted is deterministic", "[sim][actua
   CHECK(same(a.thruster_impulse_Ns, b.thruster_impulse_Ns));
   CHECK(same(a.wheel_friction_torque_Nm, b.wheel_friction_torque_Nm));
 }
+
+TEST_CASE("DynamicsModel: a quiet part of the step switches the coils off", "[sim][actuators]") {
+  // Duty-cycling against magnetometer sampling (issue 6): coils on over the
+  // first (1 - q) of the step only. The coils' share of the momentum change is
+  // then (1 - q) times that of a full step, to the field's and attitude's
+  // change within 0.1 s.
+  DynamicsParams p = fullyEquipped();
+  p.thrusters.clear();
+  p.flaps.fitted = false;
+  const auto momentumChange = [&](const Eigen::Vector3d& m, double quiet, Eigen::Vector3d* at_end = nullptr) {
+    DynamicsModel model(p);
+    const Eigen::Vector3d h0 = model.truth().H_total_N_Nms;
+    ActuatorCommands cmd;
+    cmd.dipole_B_Am2 = m;
+    cmd.dipole_quiet_fraction = quiet;
+    model.step(cmd, kStep);
+    if (at_end != nullptr) *at_end = model.truth().dipole_at_t_B_Am2;
+    return Eigen::Vector3d(model.truth().H_total_N_Nms - h0);
+  };
+  const Eigen::Vector3d m(0.15, -0.1, 0.12);
+  const Eigen::Vector3d none = momentumChange(Eigen::Vector3d::Zero(), 0.0);
+  Eigen::Vector3d dipole_at_end;
+  const Eigen::Vector3d full = momentumChange(m, 0.0, &dipole_at_end) - none;
+  CHECK((dipole_at_end - m).norm() < 1e-15);
+  for (const double quiet : {0.25, 0.5, 0.9}) {
+    const Eigen::Vector3d part = momentumChange(m, quiet, &dipole_at_end) - none;
+    INFO("quiet fraction " << quiet);
+    CHECK((part - (1.0 - quiet) * full).norm() < 1e-3 * full.norm());
+    CHECK(dipole_at_end.isZero());  // what a magnetometer sampling at the step's end sees
+  }
+  CHECK((momentumChange(m, 1.5) - none - full).norm() < 1e-12 * full.norm());  // out of [0, 1): ignored
+}
