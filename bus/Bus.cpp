@@ -3,6 +3,7 @@
 
 #include <arpa/inet.h>
 #include <ifaddrs.h>
+#include <netdb.h>
 #include <netinet/in.h>
 
 #include <algorithm>
@@ -11,6 +12,7 @@
 #include <stdexcept>
 
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
+#include <fastdds/rtps/attributes/ServerAttributes.h>
 #include <fastdds/rtps/transport/UDPv4TransportDescriptor.h>
 #include <fastdds/rtps/transport/shared_mem/SharedMemTransportDescriptor.h>
 #include <fastrtps/utils/IPLocator.h>
@@ -130,6 +132,55 @@ dds::DomainParticipantQos networkQos() {
   return qos;
 }
 
+/// A discovery-server client (Fast DDS Discovery Server protocol): it
+/// announces itself to the listed servers only and learns its peers from
+/// them, so no multicast is needed or sent. Server i is the one started as
+/// `fastdds discovery -i i`, whose GUID prefix Fast DDS derives from i. UDP
+/// only: every process of such a rig is a host (container) of its own.
+dds::DomainParticipantQos discoveryServerQos(const std::vector<std::string>& servers) {
+  dds::DomainParticipantQos qos;
+  qos.transport().use_builtin_transports = false;
+  qos.transport().user_transports.push_back(
+      std::make_shared<eprosima::fastdds::rtps::UDPv4TransportDescriptor>());
+  auto& discovery = qos.wire_protocol().builtin.discovery_config;
+  discovery.discoveryProtocol = eprosima::fastrtps::rtps::DiscoveryProtocol_t::CLIENT;
+  qos.wire_protocol().builtin.metatrafficMulticastLocatorList.clear();
+  for (std::size_t i = 0; i < servers.size(); ++i) {
+    const auto colon = servers[i].rfind(':');
+    eprosima::fastdds::rtps::RemoteServerAttributes server;
+    eprosima::fastdds::rtps::get_server_client_default_guidPrefix(static_cast<int>(i),
+                                                                 server.guidPrefix);
+    server.metatrafficUnicastLocatorList.push_back(udpLocator(
+        servers[i].substr(0, colon), static_cast<std::uint32_t>(std::stoul(servers[i].substr(colon + 1)))));
+    discovery.m_DiscoveryServers.push_back(server);
+  }
+  return qos;
+}
+
+/// "host:port" with host a name or a dotted quad, into "IPv4:port".
+std::string resolveServer(const std::string& entry, const std::string& variable) {
+  const auto colon = entry.rfind(':');
+  const auto bad = [&](const std::string& why) {
+    return std::invalid_argument(variable + ": '" + entry + "': " + why);
+  };
+  if (colon == std::string::npos || colon == 0) throw bad("expected host:port");
+  const std::string host = entry.substr(0, colon);
+  const std::string port = entry.substr(colon + 1);
+  char* end = nullptr;
+  const unsigned long number = std::strtoul(port.c_str(), &end, 10);
+  if (port.empty() || *end != '\0' || number == 0 || number > 65535) throw bad("port must be 1..65535");
+  addrinfo hints{};
+  hints.ai_family = AF_INET;
+  addrinfo* found = nullptr;
+  if (const int rc = ::getaddrinfo(host.c_str(), nullptr, &hints, &found); rc != 0) {
+    throw bad(std::string("cannot resolve the host: ") + ::gai_strerror(rc));
+  }
+  char text[INET_ADDRSTRLEN] = {};
+  ::inet_ntop(AF_INET, &reinterpret_cast<const sockaddr_in*>(found->ai_addr)->sin_addr, text, sizeof text);
+  ::freeaddrinfo(found);
+  return std::string(text) + ":" + port;
+}
+
 }  // namespace
 
 std::uint32_t domainFromEnvironment(std::uint32_t scenario_domain) {
@@ -149,11 +200,23 @@ BusNetwork networkFromEnvironment() {
   network.security_dir = securityDirFromEnvironment();
   const char* multicast = std::getenv("FLATSAT_NETWORK");
   if (multicast != nullptr && std::string(multicast) == "1") network.profile = NetworkProfile::kNetwork;
+  const char* servers = std::getenv("FLATSAT_DISCOVERY_SERVER");
   const char* peers = std::getenv("FLATSAT_PEERS");
-  if (peers == nullptr || *peers == '\0') return network;
-  if (network.profile == NetworkProfile::kNetwork) {
-    throw std::invalid_argument("FLATSAT_PEERS and FLATSAT_NETWORK=1: choose one");
+  const bool has_servers = servers != nullptr && *servers != '\0';
+  const bool has_peers = peers != nullptr && *peers != '\0';
+  if (int(has_servers) + int(has_peers) + int(network.profile == NetworkProfile::kNetwork) > 1) {
+    throw std::invalid_argument(
+        "FLATSAT_PEERS, FLATSAT_DISCOVERY_SERVER and FLATSAT_NETWORK=1: choose one");
   }
+  if (has_servers) {
+    network.profile = NetworkProfile::kDiscoveryServer;
+    std::istringstream list(servers);
+    for (std::string server; std::getline(list, server, ',');) {
+      network.discovery_servers.push_back(resolveServer(server, "FLATSAT_DISCOVERY_SERVER"));
+    }
+    return network;
+  }
+  if (!has_peers) return network;
   network.profile = NetworkProfile::kPeers;
   std::istringstream list(peers);
   for (std::string peer; std::getline(list, peer, ',');) {
@@ -167,6 +230,13 @@ BusNetwork networkFromEnvironment() {
   return network;
 }
 
+void useNetwork(BusOptions& options, const BusNetwork& network) {
+  options.profile = network.profile;
+  options.peers = network.peers;
+  options.discovery_servers = network.discovery_servers;
+  options.security_dir = network.security_dir;
+}
+
 Bus::Bus(const BusOptions& options) : options_(options) {
   if (options.domain_id > kMaxDomainId) {
     throw std::invalid_argument("domain id " + std::to_string(options.domain_id) +
@@ -174,7 +244,9 @@ Bus::Bus(const BusOptions& options) : options_(options) {
   }
   auto qos = options.profile == NetworkProfile::kLoopback ? loopbackQos(options.domain_id)
              : options.profile == NetworkProfile::kPeers ? peersQos(options.domain_id, options.peers)
-                                                         : networkQos();
+             : options.profile == NetworkProfile::kDiscoveryServer
+                 ? discoveryServerQos(options.discovery_servers)
+                 : networkQos();
   qos.name(options.participant_name);
   if (!options.security_dir.empty()) {
     addSecurity(qos, options.security_dir,

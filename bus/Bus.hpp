@@ -28,6 +28,10 @@ enum class NetworkProfile {
   /// UDP only on this host's address among `peers`, unicast discovery to the
   /// peers, no shared memory, no multicast: a rig across hosts or namespaces
   kPeers,
+  /// UDP only (no shared memory, no multicast), discovery through Fast DDS
+  /// discovery servers (`fastdds discovery`) at `discovery_servers`: networks
+  /// without multicast, such as a container network with it switched off
+  kDiscoveryServer,
 };
 
 struct BusOptions {
@@ -37,6 +41,8 @@ struct BusOptions {
   QosTuning tuning;  ///< applied to every endpoint of this participant
   /// kPeers: IPv4 addresses of the rig's hosts, this host's among them
   std::vector<std::string> peers;
+  /// kDiscoveryServer: "IPv4:port" of each server, server i started with `-i i`
+  std::vector<std::string> discovery_servers;
   /// DDS Security directory (bus/Security.hpp); "" for an open bus
   std::string security_dir;
   /// certificate and grant used with security_dir; "" means participant_name
@@ -44,11 +50,14 @@ struct BusOptions {
 };
 
 /// A process's network from its environment: FLATSAT_PEERS=a,b,... selects
-/// kPeers with those hosts, FLATSAT_NETWORK=1 kNetwork, neither kLoopback;
-/// FLATSAT_SECURE_DIR turns DDS Security on.
+/// kPeers with those hosts, FLATSAT_NETWORK=1 kNetwork,
+/// FLATSAT_DISCOVERY_SERVER=host:port[,host:port] kDiscoveryServer (host names
+/// resolved here), none of them kLoopback; FLATSAT_SECURE_DIR turns DDS
+/// Security on.
 struct BusNetwork {
   NetworkProfile profile = NetworkProfile::kLoopback;
   std::vector<std::string> peers;
+  std::vector<std::string> discovery_servers;  ///< "IPv4:port", resolved
   std::string security_dir;  ///< FLATSAT_SECURE_DIR: DDS Security on, with that directory's files
 };
 
@@ -56,6 +65,8 @@ struct BusNetwork {
 std::uint32_t domainFromEnvironment(std::uint32_t scenario_domain);
 /// Throws std::invalid_argument naming the variable when it is malformed.
 BusNetwork networkFromEnvironment();
+/// Puts a process's network (profile, peers, servers, security) into `options`.
+void useNetwork(BusOptions& options, const BusNetwork& network);
 
 /// One DDS participant with one publisher and one subscriber; topics are
 /// created once per name and shared by every endpoint of the process.

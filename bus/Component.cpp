@@ -23,7 +23,7 @@ void Component::run() {
     loop();
     finish();
   } catch (const NodeFailure& failure) {
-    publishHealth(msg::ComponentState::FAILED, steps_done_, failure.what());
+    publishLastHealth(msg::ComponentState::FAILED, steps_done_, failure.what());
     throw;
   }
 }
@@ -42,7 +42,8 @@ void Component::start() {
 void Component::finish() {
   flushOutputs();
   done_.waitForAcknowledgments(std::chrono::seconds(5));
-  publishHealth(msg::ComponentState::STOPPED, steps_done_, "run complete");
+  beforeStopped();
+  publishLastHealth(msg::ComponentState::STOPPED, steps_done_, "run complete");
   spdlog::info("{}: stopped after {} steps", name(), steps_done_);
 }
 

@@ -40,6 +40,9 @@ class Component : public Node {
  protected:
   /// One step; called with every input ready for ctx.step.
   virtual void step(const StepContext& ctx) = 0;
+  /// After the last step, before the STOPPED health: whatever a peer may read
+  /// once this component says it stopped (a file on a shared volume) is final here.
+  virtual void beforeStopped() {}
 
   /// What the RUNNING health says from now on ("stepping" until set): a
   /// change is published at once, then repeated by the heartbeat.

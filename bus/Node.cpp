@@ -132,4 +132,12 @@ void Node::publishHealth(msg::ComponentState state, std::uint64_t steps_done,
   health_.write(health);
 }
 
+void Node::publishLastHealth(msg::ComponentState state, std::uint64_t steps_done,
+                             const std::string& message) {
+  publishHealth(state, steps_done, message);
+  if (!health_.waitForAcknowledgments(std::chrono::seconds(2))) {
+    spdlog::warn("{}: not every reader acknowledged the last health", name());
+  }
+}
+
 }  // namespace flatsat::bus

@@ -185,6 +185,10 @@ class Node {
   virtual void onStall(std::uint64_t k) {}
   void publishHealth(msg::ComponentState state, std::uint64_t steps_done,
                      const std::string& message);
+  /// The last health before the process ends (STOPPED, FAILED): waits up to
+  /// 2 s for every reader to acknowledge it, as a launcher on another host
+  /// knows the component finished only from this sample.
+  void publishLastHealth(msg::ComponentState state, std::uint64_t steps_done, const std::string& message);
 
   static bool interrupted();
 

@@ -46,14 +46,12 @@ int runNode(int argc, char** argv, const std::string& default_name, Read&& read,
       spdlog::error("{}: invalid parameters:\n{}", args.name, problems.joined());
       return 2;
     }
-    const BusNetwork network = networkFromEnvironment();
-    Bus bus({.domain_id = domainFromEnvironment(scenario.domain_id),
-             .profile = network.profile,
-             .participant_name = args.name,
-             .tuning = qosTuning(scenario, ownership_strength),
-             .peers = network.peers,
-             .security_dir = network.security_dir,
-             .identity = args.name});
+    BusOptions options{.domain_id = domainFromEnvironment(scenario.domain_id),
+                       .participant_name = args.name,
+                       .tuning = qosTuning(scenario, ownership_strength),
+                       .identity = args.name};
+    useNetwork(options, networkFromEnvironment());
+    Bus bus(options);
     auto node = make(bus, nodeOptions(scenario, args.name), params);
     node->run();
     return 0;

@@ -42,6 +42,9 @@ Recording::Recording(const std::string& path, Access access) : path_(path) {
     sqlite3_close(db_);
     throw std::runtime_error(path + ": cannot open recording: " + reason);
   }
+  // A reader of a recording still being written (a launcher on another host,
+  // `flatsat replay` of a live run) can find it busy for a moment in WAL mode.
+  sqlite3_busy_timeout(db_, 10'000);
   if (access == Access::kRead) return;
   writing_ = true;
   // WAL + NORMAL: a committed transaction survives a crash of this process.

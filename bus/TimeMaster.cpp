@@ -120,7 +120,7 @@ void TimeMaster::run() {
     }
     stop();
   } catch (const NodeFailure& failure) {
-    publishHealth(msg::ComponentState::FAILED, 0, failure.what());
+    publishLastHealth(msg::ComponentState::FAILED, 0, failure.what());
     throw;
   }
 }
@@ -169,7 +169,7 @@ void TimeMaster::stop() {
   grant_.write(stop);
   flushOutputs();
   grant_.waitForAcknowledgments(std::chrono::seconds(5));
-  publishHealth(msg::ComponentState::STOPPED, timing_.final_step + 1, "run complete");
+  publishLastHealth(msg::ComponentState::STOPPED, timing_.final_step + 1, "run complete");
 }
 
 }  // namespace flatsat::bus

@@ -20,6 +20,8 @@ packages=(
   iproute2 tcpdump procps
   python3 gnuplot-nox
 )
+# Only for `test`: the compose rig's engine, base image and network filter.
+test_packages=(docker.io docker-compose debootstrap nftables)
 # Only for `fuzz`: clang with libFuzzer and the sanitizer runtimes.
 fuzz_packages=(clang libclang-rt-14-dev)
 
@@ -34,6 +36,20 @@ deps() {
   [ "$(id -u)" -ne 0 ] && sudo="sudo"
   $sudo apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >&2
+}
+
+# The Docker engine for the compose rig test, started when installed and not
+# running (as root); the test says it skipped when none answers.
+start_docker() {
+  docker info >/dev/null 2>&1 && return 0
+  [ "$(id -u)" -eq 0 ] && command -v dockerd >/dev/null || return 0
+  echo "rig.sh: starting the Docker engine (log: /tmp/flatsat-dockerd.log)" >&2
+  nohup dockerd >/tmp/flatsat-dockerd.log 2>&1 &
+  for _ in $(seq 60); do
+    docker info >/dev/null 2>&1 && return 0
+    sleep 0.5
+  done
+  echo "rig.sh: the Docker engine did not start; the compose rig test will skip" >&2
 }
 
 build() {
@@ -63,7 +79,8 @@ case "$cmd" in
     exec ctest --output-on-failure -R '^fuzz\.' --timeout 100000
     ;;
   test)
-    deps; build
+    deps "${test_packages[@]}"; build
+    start_docker
     cd "$build"
     exec ctest --output-on-failure -j"$jobs" --timeout 1500
     ;;

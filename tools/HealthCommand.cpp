@@ -25,6 +25,7 @@ struct HealthOptions {
   double wait_s = 8.0;
   bool json = false;
   int domain = -1;
+  std::string component;  // --component: that one only, its state as the exit code
 };
 
 struct Entry {
@@ -95,6 +96,35 @@ void printTable(const nlohmann::ordered_json& rows, std::uint32_t domain) {
   std::fflush(stdout);
 }
 
+/// One component's health as a probe (container health checks): 0 when it
+/// reported within --wait and is neither FAILED nor gone, else 1.
+int probe(const HealthOptions& o, const ToolBus& tool_bus, std::mutex& mutex,
+          const std::map<std::string, Entry>& entries) {
+  const auto start = Clock::now();
+  const auto reported = [&] {
+    std::lock_guard lock(mutex);
+    return entries.count(o.component) > 0;
+  };
+  while (!reported() && std::chrono::duration<double>(Clock::now() - start).count() < o.wait_s) {
+    if (!sleepUnlessInterrupted(0.1)) break;
+  }
+  nlohmann::ordered_json rows;
+  {
+    std::lock_guard lock(mutex);
+    std::map<std::string, Entry> one;
+    if (auto it = entries.find(o.component); it != entries.end()) one.insert(*it);
+    rows = table(one, tool_bus);
+  }
+  if (o.json) std::cout << rows.dump(2) << "\n";
+  else printTable(rows, tool_bus.domain());
+  if (rows.empty()) {
+    std::cerr << "flatsat health: " << o.component << " did not report within " << o.wait_s << " s\n";
+    return 1;
+  }
+  const auto& row = rows.front();
+  return row["alive"].get<bool>() && row["state"] != "FAILED" ? 0 : 1;
+}
+
 int health(const HealthOptions& o) {
   ToolBus tool_bus("health", o.domain);
   std::mutex mutex;
@@ -108,6 +138,7 @@ int health(const HealthOptions& o) {
     return table(entries, tool_bus);
   };
 
+  if (!o.component.empty()) return probe(o, tool_bus, mutex, entries);
   if (o.once) {
     // Each component's health writer keeps its last sample for late joiners:
     // done once every discovered health writer delivered, after the time
@@ -165,6 +196,9 @@ CLI::App* addHealthCommand(CLI::App& app, int& exit_code) {
                   "--once: wait at most S seconds for every component's health [s] (default 8; "
                   "discovery alone takes up to 4)")
       ->check(CLI::PositiveNumber);
+  cmd->add_option("--component", options->component,
+                  "only this component, once: exit 0 when it reported within --wait and is "
+                  "neither FAILED nor gone (a container health check)");
   cmd->add_flag("--json", options->json, "JSON rows instead of a table (one line per refresh)");
   addDomainOption(*cmd, options->domain);
   cmd->footer(

@@ -80,18 +80,21 @@ void stopAll(std::vector<Child>& children) {
   }
 }
 
-/// Notes when each external component first shows up on the health topic.
-class Joins {
+/// [s] How long an external component may take to first report on the bus:
+/// the dynamics server waits 60 s for it, and a container or a far host
+/// needs a few seconds more to start.
+constexpr double kExternalJoinTimeout = 90.0;
+
+/// Follows the external components on the health topic: when each first shows
+/// up, and whether each stepped one finished (STOPPED) or failed. A rig whose
+/// every component is external (one container each) lasts until they finish.
+class Externals {
  public:
-  Joins(bus::Bus& bus, const bus::Scenario& scenario, Clock::time_point start)
-      : start_(start), waiting_(externals(scenario)), reader_(bus, bus::topics::kHealth, [this](const msg::Health& health) {
-          const auto source = bus::text(health.header().source());
-          std::lock_guard lock(mutex_);
-          if (waiting_.erase(source) > 0) {
-            joined_[source] = std::chrono::duration<double>(Clock::now() - start_).count();
-            fresh_.push_back(source);
-          }
-        }) {}
+  Externals(bus::Bus& bus, const bus::Scenario& scenario, Clock::time_point start)
+      : start_(start),
+        waiting_(named(scenario, false)),
+        unfinished_(named(scenario, true)),
+        reader_(bus, bus::topics::kHealth, [this](const msg::Health& health) { receive(health); }) {}
 
   /// Logs the joins since the last call.
   void report() {
@@ -111,22 +114,57 @@ class Joins {
     for (const auto& name : waiting_) names += " " + name;
     return names;
   }
+  /// Stepped external components that have not reported STOPPED or FAILED.
+  std::size_t running() {
+    std::lock_guard lock(mutex_);
+    return unfinished_.size();
+  }
+  /// Why the run cannot go on because of an external component; "" if it can.
+  std::string failure() {
+    std::lock_guard lock(mutex_);
+    if (!failure_.empty() || waiting_.empty()) return failure_;
+    if (std::chrono::duration<double>(Clock::now() - start_).count() > kExternalJoinTimeout) {
+      std::string names;
+      for (const auto& name : waiting_) names += " " + name;
+      return "external components did not join the bus within " +
+             std::to_string(static_cast<int>(kExternalJoinTimeout)) + " s:" + names;
+    }
+    return "";
+  }
 
  private:
-  static std::set<std::string> externals(const bus::Scenario& scenario) {
+  static std::set<std::string> named(const bus::Scenario& scenario, bool stepped_only) {
     std::set<std::string> names;
     for (const auto& c : scenario.components) {
-      if (!c.launched) names.insert(c.name);
+      if (!c.launched && (c.scheduled || !stepped_only)) names.insert(c.name);
     }
     return names;
   }
 
+  void receive(const msg::Health& health) {
+    const auto source = bus::text(health.header().source());
+    std::lock_guard lock(mutex_);
+    if (waiting_.erase(source) > 0) {
+      joined_[source] = std::chrono::duration<double>(Clock::now() - start_).count();
+      fresh_.push_back(source);
+    }
+    if (unfinished_.count(source) == 0) return;
+    if (health.state() == msg::ComponentState::FAILED && failure_.empty()) {
+      failure_ = "external component '" + source + "' failed: " + bus::text(health.message());
+    }
+    if (health.state() == msg::ComponentState::STOPPED || health.state() == msg::ComponentState::FAILED) {
+      unfinished_.erase(source);
+    }
+  }
+
   Clock::time_point start_;
   std::mutex mutex_;
-  std::set<std::string> waiting_;
+  std::set<std::string> waiting_;     // not seen yet
+  std::set<std::string> unfinished_;  // stepped, not STOPPED or FAILED yet
   std::map<std::string, double> joined_;
   std::vector<std::string> fresh_;
-  bus::ReaderOf<bus::topics::kHealth> reader_;
+  std::string failure_;
+  bus::ReaderOf<bus::topics::kHealth> reader_;  // last: it calls receive() from Fast DDS's thread
 };
 
 }  // namespace
@@ -136,14 +174,16 @@ LaunchResult launch(const bus::Scenario& scenario, const LaunchOptions& options)
   LaunchResult result;
   const fs::path logs = fs::path(options.run_dir) / "logs";
   fs::create_directories(logs);
-  const auto network = bus::networkFromEnvironment();
-  bus::Bus bus({bus::domainFromEnvironment(scenario.domain_id), network.profile,
-                "flatsat-launcher", bus::qosTuning(scenario, bus::kEmulatorStrength),
-                network.peers, network.security_dir, bus::kOperatorIdentity});
+  bus::BusOptions bus_options{.domain_id = bus::domainFromEnvironment(scenario.domain_id),
+                              .participant_name = "flatsat-launcher",
+                              .tuning = bus::qosTuning(scenario, bus::kEmulatorStrength),
+                              .identity = bus::kOperatorIdentity};
+  bus::useNetwork(bus_options, bus::networkFromEnvironment());
+  bus::Bus bus(bus_options);
   Progress progress(bus, options.progress, scenario.pacing == bus::Pacing::kPaced);
 
   const auto start = Clock::now();
-  Joins joins(bus, scenario, start);
+  Externals externals(bus, scenario, start);
   std::vector<Child> children;
   std::vector<const bus::ComponentEntry*> late;  // bridges that start after a delay
   const auto startChild = [&](const bus::ComponentEntry& component) {
@@ -171,6 +211,7 @@ LaunchResult launch(const bus::Scenario& scenario, const LaunchOptions& options)
     }
   }
   result.processes = children.size() + late.size();
+  for (const auto& c : scenario.components) result.processes += !c.launched && c.scheduled;
 
   auto next_print = Clock::now();
   // The run lasts as long as the stepped components; bridges are stopped after.
@@ -179,7 +220,8 @@ LaunchResult launch(const bus::Scenario& scenario, const LaunchOptions& options)
     for (const auto& c : children) n += c.running && c.required;
     return n;
   };
-  while (steppedRunning() > 0) {
+  const auto rigRunning = [&] { return steppedRunning() > 0 || externals.running() > 0; };
+  while (rigRunning()) {
     for (auto it = late.begin(); it != late.end();) {
       if (Clock::now() - start >= std::chrono::duration<double>((*it)->start_after_s)) {
         spdlog::info("starting bridge {} ({} s after launch)", (*it)->name, (*it)->start_after_s);
@@ -203,20 +245,21 @@ LaunchResult launch(const bus::Scenario& scenario, const LaunchOptions& options)
                          "); last lines of " + c.log + ":\n" + tail(c.log, 8);
       }
     }
+    if (result.failure.empty()) result.failure = externals.failure();
     if (!result.failure.empty() || bus::shutdownRequested()) break;
-    joins.report();
+    externals.report();
     if (Clock::now() >= next_print) {
       progress.print(false);
       next_print += std::chrono::milliseconds(500);
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
-  if (steppedRunning() > 0 && result.failure.empty()) {
+  if (rigRunning() && result.failure.empty()) {
     result.failure = "interrupted; stopping every component";
   }
   stopAll(children);
-  joins.report();
-  if (const auto missing = joins.missing(); !result.failure.empty() && !missing.empty()) {
+  externals.report();
+  if (const auto missing = externals.missing(); !result.failure.empty() && !missing.empty()) {
     result.failure += "\nexternal components that never joined the bus:" + missing;
   }
   progress.print(true);
@@ -225,7 +268,7 @@ LaunchResult launch(const bus::Scenario& scenario, const LaunchOptions& options)
   result.startup_seconds = progress.startupSeconds(entered);
   result.steps = progress.steps();
   result.tick_jitter = progress.tickJitter();
-  result.external_joined_s = joins.joined();
+  result.external_joined_s = externals.joined();
   result.ok = result.failure.empty();
   return result;
 }

@@ -223,10 +223,7 @@ int replay(const ReplayOptions& o) {
 
   bus::BusOptions bus_options;
   bus_options.domain_id = resolveDomain(o.domain);
-  const auto network = bus::networkFromEnvironment();
-  bus_options.profile = network.profile;
-  bus_options.peers = network.peers;
-  bus_options.security_dir = network.security_dir;
+  bus::useNetwork(bus_options, bus::networkFromEnvironment());
   bus_options.identity = bus::kOperatorIdentity;
   bus_options.participant_name = "flatsat-replay";
   // A component configured paced expects its producers' liveliness lease.

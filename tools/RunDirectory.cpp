@@ -37,9 +37,15 @@ std::string writeRunScenario(const std::string& scenario_file, const std::string
   }
   fs::create_directories(run_dir);
   const std::string out = (fs::path(run_dir) / "scenario.yaml").string();
-  std::ofstream file(out);
-  file << "# Resolved from " << fs::absolute(scenario_file).string() << "\n" << root << "\n";
-  if (!file) throw std::runtime_error(out + ": cannot write");
+  // Written aside and renamed: a process on another host or container that
+  // waits for this file never reads half of it.
+  const std::string partial = out + ".partial";
+  {
+    std::ofstream file(partial);
+    file << "# Resolved from " << fs::absolute(scenario_file).string() << "\n" << root << "\n";
+    if (!file.flush()) throw std::runtime_error(partial + ": cannot write");
+  }
+  fs::rename(partial, out);
   return out;
 }
 

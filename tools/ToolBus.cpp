@@ -72,10 +72,7 @@ ToolBus::ToolBus(const std::string& tool_name, int domain_option)
     : domain_(resolveDomain(domain_option)) {
   bus::BusOptions options;
   options.domain_id = domain_;
-  const auto network = bus::networkFromEnvironment();
-  options.profile = network.profile;
-  options.peers = network.peers;
-  options.security_dir = network.security_dir;
+  bus::useNetwork(options, bus::networkFromEnvironment());
   options.identity = bus::kOperatorIdentity;
   options.participant_name = "flatsat-" + tool_name;
   bus_ = disabledBus(options);

@@ -72,6 +72,7 @@ struct RunOptions {
   std::optional<std::uint64_t> seed;  // --seed: replaces the scenario's seed (dispersed initial conditions, noise)
   std::string log_level = "info";
   std::vector<std::string> prefixes;  // --prefix COMPONENT=COMMAND
+  std::vector<std::string> externals;  // --external COMPONENT|*: not started here, awaited on the bus
   std::string secure;                 // --secure DIR: DDS Security with deploy/security/make-certs.sh's files
   bool quiet = false;
   bool json = false;
@@ -142,6 +143,18 @@ int run(const RunOptions& o, nlohmann::ordered_json* summary_out = nullptr) {
   try {
     auto overrides = o.overrides;
     if (o.seed) overrides.push_back("seed=" + std::to_string(*o.seed));
+    for (const auto& name : o.externals) {
+      bool found = false;
+      for (const auto& c : original.components) {
+        if (name != "*" && name != c.name) continue;
+        overrides.push_back("components." + c.name + ".external=true");
+        found = true;
+      }
+      if (!found) {
+        std::cerr << "error: --external " << name << ": " << o.scenario << " has no component '" << name << "'\n";
+        return kExitBadInput;
+      }
+    }
     const std::string resolved = tools::writeRunScenario(o.scenario, run_dir, overrides);
     if (!loadChecked(resolved, run_dir, scenario)) return kExitBadInput;
   } catch (const std::exception& e) {
@@ -186,8 +199,13 @@ int run(const RunOptions& o, nlohmann::ordered_json* summary_out = nullptr) {
     std::cerr << "error: " << result.failure << "\n";
     return kExitFailed;
   }
-  const auto summary =
-      tools::summarize(scenario, (fs::path(run_dir) / "recording.sqlite").string(), result);
+  nlohmann::ordered_json summary;
+  try {
+    summary = tools::summarize(scenario, (fs::path(run_dir) / "recording.sqlite").string(), result);
+  } catch (const std::exception& e) {  // the recording is kept as it is for a look
+    std::cerr << "error: the run ended but its summary failed: " << e.what() << "\n";
+    return kExitFailed;
+  }
   std::ofstream(fs::path(run_dir) / "summary.json") << summary.dump(2) << "\n";
   if (o.json) {
     std::cout << summary.dump(2) << "\n";
@@ -315,6 +333,9 @@ int main(int argc, char** argv) {
                     "every component in this one process on an in-process bus (no DDS), "
                     "scheduled in data-flow order: same recording, much faster; lockstep only");
   run_cmd->add_option("--seed", run_options.seed, "scenario seed: dispersed initial conditions and noise");
+  run_cmd->add_option("--external", run_options.externals,
+                      "COMPONENT (or * for all): runs elsewhere (a container, another host); "
+                      "not started here, the rig waits for it on the bus");
   run_cmd->add_option("--prefix", run_options.prefixes,
                       "COMPONENT=COMMAND: start that component under COMMAND (split at spaces), "
                       "e.g. gyro='ip netns exec fs-b'; * for every other component");

@@ -83,6 +83,11 @@ void RecorderNode::step(const bus::StepContext& ctx) {
   recording_.commit();
 }
 
+void RecorderNode::beforeStopped() {
+  std::lock_guard lock(recording_mutex_);
+  recording_.commit();
+}
+
 RecorderParams readParams(const bus::Scenario& scenario, const bus::NodeArgs& args,
                           bus::ConfigProblems& problems) {
   RecorderParams p;

@@ -36,6 +36,9 @@ class RecorderNode final : public bus::Component {
 
  private:
   void step(const bus::StepContext& ctx) override;
+  /// Commits the last steps: a launcher on another host summarises the
+  /// recording as soon as this recorder reports STOPPED.
+  void beforeStopped() override;
   template <class Def>
   void record(const Def& def);
   /// Topics that are not stepped: stored on arrival, never waited for.

@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <string>
 
 #include <catch2/catch.hpp>
@@ -44,5 +45,29 @@ inline RigRun runScenario(const std::string& scenario, const std::string& out,
   std::filesystem::remove_all(out);
   return run;
 }
+
+/// A run directory's summary.json.
+inline nlohmann::json readSummary(const std::string& out) {
+  nlohmann::json summary;
+  std::ifstream(std::filesystem::path(out) / "summary.json") >> summary;
+  return summary;
+}
+
+/// The top-level keys of a summary.
+inline std::set<std::string> summaryKeys(const nlohmann::json& summary) {
+  std::set<std::string> names;
+  for (const auto& [key, value] : summary.items()) names.insert(key);
+  return names;
+}
+
+/// Datagrams in a capture file that match a tcpdump filter ("" for all).
+inline int capturedPackets(const std::string& pcap, const std::string& filter) {
+  const auto r = runCommand("tcpdump -r " + pcap + " -n " + (filter.empty() ? "" : "'" + filter + "'") +
+                            " 2>/dev/null | wc -l");
+  return std::stoi(r.output);
+}
+
+/// RTPS datagrams start with the magic "RTPS" right after the UDP header.
+inline const std::string kRtpsFilter = "udp and udp[8:4] = 0x52545053";
 
 }  // namespace flatsat::test

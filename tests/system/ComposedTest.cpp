@@ -47,12 +47,6 @@ std::string networkResources(pid_t pid) {
   return found;
 }
 
-nlohmann::json readSummary(const std::string& out) {
-  nlohmann::json summary;
-  std::ifstream(fs::path(out) / "summary.json") >> summary;
-  return summary;
-}
-
 }  // namespace
 
 TEST_CASE("a composed run records what the multi-process rig records, faster, without DDS",
@@ -80,7 +74,7 @@ TEST_CASE("a composed run records what the multi-process rig records, faster, wi
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
   }
   fs::remove(log);
-  const auto composed = readSummary(out);
+  const auto composed = test::readSummary(out);
   fs::remove_all(out);
 
   INFO("looked " << looks << " times while it ran");

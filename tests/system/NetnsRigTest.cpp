@@ -9,7 +9,6 @@
 
 #include <filesystem>
 #include <fstream>
-#include <set>
 #include <string>
 
 #include "tests/support/Rig.hpp"
@@ -22,8 +21,7 @@ namespace {
 const std::string kRunSh = std::string(FLATSAT_SCENARIO_DIR) + "/../netns/run.sh";
 const std::string kDefault = std::string(FLATSAT_SCENARIO_DIR) + "/default.yaml";
 const std::string kShort = "--set duration_orbits=null --set duration_s=60";
-// RTPS datagrams start with the magic "RTPS" right after the UDP header.
-const std::string kRtps = "udp and udp[8:4] = 0x52545053";
+const std::string& kRtps = test::kRtpsFilter;
 
 /// True when this process may make network namespaces (root, not a
 /// restricted container); says why not otherwise.
@@ -38,26 +36,8 @@ bool netnsPermitted() {
   return result.exit_code == 0;
 }
 
-std::set<std::string> keys(const nlohmann::json& summary) {
-  std::set<std::string> names;
-  for (const auto& [key, value] : summary.items()) names.insert(key);
-  return names;
-}
-
-nlohmann::json readSummary(const std::string& out) {
-  nlohmann::json summary;
-  std::ifstream(fs::path(out) / "summary.json") >> summary;
-  return summary;
-}
-
 std::string rigEnvironment(const std::string& id) {
   return "FLATSAT_BIN_DIR=" + std::string(FLATSAT_BIN_DIR) + " FLATSAT_RIG_ID=" + id + " ";
-}
-
-int packets(const std::string& pcap, const std::string& filter) {
-  const auto r = test::runCommand("tcpdump -r " + pcap + " -n " +
-                                  (filter.empty() ? "" : "'" + filter + "'") + " 2>/dev/null | wc -l");
-  return std::stoi(r.output);
 }
 
 }  // namespace
@@ -81,8 +61,8 @@ TEST_CASE("the namespace rig records what the one-host rig records", "[system][n
     const auto result = test::runCommand("bash " + script);
     INFO(result.output);
     REQUIRE(result.output.find("rc=0") != std::string::npos);
-    const auto rig = readSummary(out);
-    CHECK(keys(rig) == keys(one_host));
+    const auto rig = test::readSummary(out);
+    CHECK(test::summaryKeys(rig) == test::summaryKeys(one_host));
     CHECK(rig["recording_sha256"] == one_host["recording_sha256"]);
     CHECK(rig["steps"] == one_host["steps"]);
     // The bus really crossed the bridge, between the rig's own addresses only,
@@ -93,9 +73,9 @@ TEST_CASE("the namespace rig records what the one-host rig records", "[system][n
     const std::string sensors_to_estimator =
         kRtps + " and src host 10.213.7.2 and dst host 10.213.7.3 and udp dst portrange " +
         std::to_string(base + 11) + "-" + std::to_string(base + 11 + 2 * 47) + " and udp[2:2] & 1 = 1";
-    CHECK(packets(rig_pcap, sensors_to_estimator) >= one_host["steps"].get<int>());
-    CHECK(packets(rig_pcap, kRtps + " and not (src net 10.213.7.0/24 and dst net 10.213.7.0/24)") == 0);
-    CHECK(packets(host_pcap, "") == 0);
+    CHECK(test::capturedPackets(rig_pcap, sensors_to_estimator) >= one_host["steps"].get<int>());
+    CHECK(test::capturedPackets(rig_pcap, kRtps + " and not (src net 10.213.7.0/24 and dst net 10.213.7.0/24)") == 0);
+    CHECK(test::capturedPackets(host_pcap, "") == 0);
     CHECK(test::runCommand("ip netns list | grep -c fs-" + id + "-").output == "0\n");
     fs::remove_all(out);
     for (const auto& f : {host_pcap, rig_pcap, script}) fs::remove(f);
@@ -119,7 +99,7 @@ TEST_CASE("the namespace rig records what the one-host rig records", "[system][n
     INFO(result.output);
     REQUIRE(result.output.find("rc=0") != std::string::npos);
     CHECK(result.output.find("gyro_rc=0") != std::string::npos);
-    const auto rig = readSummary(out);
+    const auto rig = test::readSummary(out);
     CHECK(rig["roles"]["gyro"] == "external");
     REQUIRE(rig["external_joined_s"].contains("gyro"));
     CHECK(rig["external_joined_s"]["gyro"].get<double>() > 0.0);
