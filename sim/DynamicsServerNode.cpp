@@ -56,7 +56,13 @@ DynamicsServerNode::DynamicsServerNode(bus::Bus& bus, bus::NodeOptions options,
                                        const DynamicsServerParams& params)
     : TimeMaster(bus, std::move(options), {params.step_period_ns, params.final_step}),
       wheel_count_(params.dynamics.body.wheel_count),
-      model_(params.dynamics) {
+      model_(params.dynamics),
+      fault_port_(bus, name(),
+                  [plant = params.dynamics](const msg::FaultCmd& command, ActuatorFault& fault) {
+                    return toActuatorFault(command, plant, fault);
+                  },
+                  fault_events_) {
+  for (const auto& fault : params.faults) faults_.add(fault);
   if (options_.schedule.count(std::string(bus::topics::kWheelTorqueCmd.producer))) {
     wheel_cmd_ = &addInput(bus::topics::kWheelTorqueCmd);
   }
@@ -93,6 +99,10 @@ void DynamicsServerNode::advance(const bus::StepContext& ctx) {
     const auto on_time_s = thruster_cmd_->at(ctx.step).on_time_s();
     cmd.thruster_on_time_s = Eigen::Map<const ThrusterVector>(on_time_s.data());
   }
+  fault_port_.take(ctx, [this](const ActuatorFault& fault) { return faults_.add(fault); });
+  const std::uint32_t active = faults_.apply(cmd, ctx.sim_time_ns);
+  fault_port_.publishEvents(active, faults_.count(),
+                            [this](int i) -> const ActuatorFault& { return faults_.fault(i); }, ctx);
   model_.step(cmd, ctx.sim_time_ns + ctx.period_ns);
 }
 

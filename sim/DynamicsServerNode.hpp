@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 #pragma once
+#include "bus/FaultPort.hpp"
 #include "bus/TimeMaster.hpp"
 #include "sim/DynamicsServerParams.hpp"
 
@@ -24,6 +25,9 @@ class DynamicsServerNode final : public bus::TimeMaster {
   std::int64_t dipole_cmd_age_steps_ = kNoCommand;
   int wheel_count_;
   DynamicsModel model_;
+  ActuatorFaults faults_;
+  bus::WriterOf<bus::topics::kFaultEvent>& fault_events_ = addOutput(bus::topics::kFaultEvent);
+  bus::FaultPort<ActuatorFault> fault_port_;
 };
 
 }  // namespace flatsat::sim

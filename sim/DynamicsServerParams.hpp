@@ -3,13 +3,16 @@
 #include <cstdint>
 
 #include "bus/Scenario.hpp"
+#include "sim/ActuatorFaults.hpp"
 #include "sim/DynamicsModel.hpp"
+#include "msg/Faults.h"
 
 namespace flatsat::sim {
 
 /// Everything the dynamics server reads from a scenario.
 struct DynamicsServerParams {
   DynamicsParams dynamics;
+  std::vector<ActuatorFault> faults;          ///< `faults:` of the server's section, timed in simulated time
   std::int64_t step_period_ns = 100'000'000;  ///< [ns] base period
   std::uint64_t final_step = 0;               ///< [-] last step index of the run
   double orbit_period_s = 0.0;                ///< [s] for reporting
@@ -22,6 +25,15 @@ struct DynamicsServerParams {
 DynamicsServerParams readDynamicsServerParams(const bus::Scenario& scenario,
                                               const std::string& name,
                                               bus::ConfigProblems& problems);
+
+/// `faults:` of the server's section: a list of {kind, channel, magnitude,
+/// start_s, duration_s} for the plant's actuators (sim/ActuatorFaults.hpp).
+std::vector<ActuatorFault> readActuatorFaults(bus::ParamReader& reader, const DynamicsParams& plant);
+
+/// A fault command to the dynamics server as an actuator fault; every problem
+/// (empty: valid).
+std::vector<std::string> toActuatorFault(const msg::FaultCmd& command, const DynamicsParams& plant,
+                                         ActuatorFault& fault);
 
 /// The plant sections alone (spacecraft, orbit, environment, initial), for
 /// components that carry onboard knowledge of them (wheel geometry, orbit,

@@ -158,13 +158,20 @@ CLI::App* addCmdCommand(CLI::App& app, int& exit_code) {
     });
   });
 
-  auto* fault = cmd->add_subcommand("fault", "inject a sensor fault (architecture, \"Faults\")");
-  fault->add_option("target", o->target, "sensor component: magnetometer, sun_sensor, gyro, ...")
+  auto* fault = cmd->add_subcommand("fault", "inject a sensor or actuator fault (architecture, \"Faults\")");
+  fault->add_option("target", o->target,
+                    "sensor component (magnetometer, sun_sensor, gyro, ...), or dynamics_server "
+                    "for the actuators")
       ->required();
-  fault->add_option("kind", o->kind, "stuck, bias, noise, spike, dropout or saturation")->required();
-  fault->add_option("--channel", o->channel, "measurement component (axis, wheel); -1 all (default)");
+  fault->add_option("kind", o->kind,
+                    "sensors: stuck, bias, noise, spike, dropout, saturation; dynamics_server: "
+                    "wheel_failed, wheel_stuck, wheel_degraded, coil_open, thruster_failed")
+      ->required();
+  fault->add_option("--channel", o->channel,
+                    "measurement component (axis, wheel), or wheel, coil axis, thruster; -1 all (default)");
   fault->add_option("--magnitude", o->magnitude,
-                    "bias, spike, noise 1 sigma or clip level, in the measurement's unit");
+                    "bias, spike, noise 1 sigma or clip level, in the measurement's unit; "
+                    "wheel_degraded: the torque fraction left, 0..1");
   fault->add_option("--start-s", o->start_s, "[s] simulated time it begins (default 0: at once)")
       ->check(CLI::NonNegativeNumber);
   fault->add_option("--duration-s", o->duration_s, "[s] how long (default 0: for the rest of the run)")

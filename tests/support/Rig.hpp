@@ -8,6 +8,7 @@
 #include <fstream>
 #include <set>
 #include <string>
+#include <vector>
 
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
@@ -65,6 +66,16 @@ inline int capturedPackets(const std::string& pcap, const std::string& filter) {
   const auto r = runCommand("tcpdump -r " + pcap + " -n " + (filter.empty() ? "" : "'" + filter + "'") +
                             " 2>/dev/null | wc -l");
   return std::stoi(r.output);
+}
+
+/// One topic of `flatsat export --json` into `dir`: a JSON object per line.
+inline std::vector<nlohmann::json> exportedRows(const std::filesystem::path& dir, const std::string& topic) {
+  std::vector<nlohmann::json> rows;
+  std::ifstream in(dir / (topic + ".jsonl"));
+  for (std::string line; std::getline(in, line);) {
+    if (!line.empty()) rows.push_back(nlohmann::json::parse(line));
+  }
+  return rows;
 }
 
 /// RTPS datagrams start with the magic "RTPS" right after the UDP header.

@@ -8,7 +8,6 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <sstream>
 
 #include <nlohmann/json.hpp>
 
@@ -18,19 +17,7 @@
 namespace fs = std::filesystem;
 using namespace flatsat;
 
-namespace {
-
-/// One exported topic (flatsat export --json): a JSON object per line.
-std::vector<nlohmann::json> exported(const fs::path& dir, const std::string& topic) {
-  std::vector<nlohmann::json> rows;
-  std::istringstream in(test::readFile(dir / (topic + ".jsonl")));
-  for (std::string line; std::getline(in, line);) {
-    if (!line.empty()) rows.push_back(nlohmann::json::parse(line));
-  }
-  return rows;
-}
-
-}  // namespace
+const auto& exported = test::exportedRows;
 
 TEST_CASE("cmd sends mode, fault and parameter commands that the components acknowledge and "
           "the rig records",
@@ -48,6 +35,7 @@ TEST_CASE("cmd sends mode, fault and parameter commands that the components ackn
   const std::map<std::string, std::string> commands = {
       {"mode", "mode detumble"},
       {"fault", "fault gyro bias --channel 0 --magnitude 1e-4"},
+      {"actuator_fault", "fault dynamics_server coil_open --channel 2"},
       {"param", "param attitude_controller kp_Nm_per_rad 1.5"},
       {"bad_param", "param attitude_controller kp_Nm_per_rad -1"}};
   std::map<std::string, std::unique_ptr<test::Background>> running;
@@ -67,6 +55,7 @@ TEST_CASE("cmd sends mode, fault and parameter commands that the components ackn
   }
   CHECK(results["mode"].second.find("accepted by unloading_controller") != std::string::npos);
   CHECK(results["fault"].second.find("accepted by gyro") != std::string::npos);
+  CHECK(results["actuator_fault"].second.find("accepted by dynamics_server") != std::string::npos);
   CHECK(results["param"].second.find("accepted by attitude_controller") != std::string::npos);
   CHECK(results["bad_param"].second.find("refused by attitude_controller") != std::string::npos);
   CHECK(results["bad_param"].second.find("kp_Nm_per_rad") != std::string::npos);
@@ -79,12 +68,12 @@ TEST_CASE("cmd sends mode, fault and parameter commands that the components ackn
   const fs::path out = fs::path(run) / "export";
   const auto exporting = test::runCommand(
       test::kFlatsat + " export " + run + "/recording.sqlite --json -o " + out.string() +
-      " -t command_ack -t unloading_mode_cmd -t fault_cmd -t param_cmd -t dipole_cmd -t fault_event");
+      " -t command_ack -t unloading_mode_cmd -t fault_cmd -t param_cmd -t dipole_cmd -t fault_event -t truth");
   INFO(exporting.output);
   REQUIRE(exporting.exit_code == 0);
 
   CHECK(exported(out, "unloading_mode_cmd").size() == 1);
-  CHECK(exported(out, "fault_cmd").size() == 1);
+  CHECK(exported(out, "fault_cmd").size() == 2);
   CHECK(exported(out, "param_cmd").size() == 2);
   std::map<std::string, std::vector<nlohmann::json>> acks;  // by component
   for (const auto& ack : exported(out, "command_ack")) {
@@ -92,6 +81,8 @@ TEST_CASE("cmd sends mode, fault and parameter commands that the components ackn
   }
   REQUIRE(acks["unloading_controller"].size() == 1);
   REQUIRE(acks["gyro"].size() == 1);
+  REQUIRE(acks["dynamics_server"].size() == 1);
+  CHECK(acks["dynamics_server"][0]["accepted"] == true);
   REQUIRE(acks["attitude_controller"].size() == 2);
   CHECK(acks["unloading_controller"][0]["accepted"] == true);
   CHECK(acks["gyro"][0]["accepted"] == true);
@@ -119,6 +110,20 @@ TEST_CASE("cmd sends mode, fault and parameter commands that the components ackn
                    event["header"]["step"].get<std::uint64_t>() == fault_step;
   }
   CHECK(fault_began);
+  // The open coil: from the acknowledged step on, the plant applies no dipole
+  // on z whatever the controller commands (truth k + 1 holds step k's dipole).
+  const auto coil_step = acks["dynamics_server"][0]["header"]["step"].get<std::uint64_t>();
+  std::size_t commanded_z = 0, applied_z = 0;
+  for (const auto& dipole : exported(out, "dipole_cmd")) {
+    commanded_z += dipole["header"]["step"].get<std::uint64_t>() >= coil_step &&
+                   dipole["m_body_Am2"][2].get<double>() != 0.0;
+  }
+  for (const auto& truth : exported(out, "truth")) {
+    applied_z += truth["header"]["step"].get<std::uint64_t>() > coil_step &&
+                 truth["dipole_body_Am2"][2].get<double>() != 0.0;
+  }
+  CHECK(commanded_z > 0);
+  CHECK(applied_z == 0);
   fs::remove_all(run);
   fs::remove(run + ".log");
 }
