@@ -10,6 +10,9 @@
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build="${FLATSAT_BUILD_DIR:-$here/build}"
+# ccache (when installed) keys on paths relative to the checkout: a fresh
+# clone elsewhere (CI) reuses what another clone compiled.
+export CCACHE_BASEDIR="${CCACHE_BASEDIR:-$here}"
 jobs="${FLATSAT_JOBS:-2}"
 
 packages=(

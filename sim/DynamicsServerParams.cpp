@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "bus/Stamp.hpp"
+#include "bus/FaultFields.hpp"
 #include "sim/Constants.hpp"
 #include "sim/DynamicsServerSections.hpp"
 #include "sim/GeomagneticCoefficients.hpp"
@@ -224,48 +224,26 @@ DynamicsParams readPlant(const bus::Scenario& scenario, bus::ConfigProblems& pro
   return p;
 }
 
+namespace {
+
+const std::string kActuatorFaultKinds = "wheel_failed, wheel_stuck, wheel_degraded, coil_open, thruster_failed";
+
+auto validatorFor(const DynamicsParams& plant) {
+  return [wheels = plant.body.wheel_count, thrusters = static_cast<int>(plant.thrusters.size())](
+             const ActuatorFault& f) { return f.validate(wheels, thrusters); };
+}
+
+}  // namespace
+
 std::vector<ActuatorFault> readActuatorFaults(bus::ParamReader& reader, const DynamicsParams& plant) {
-  std::vector<ActuatorFault> faults;
-  for (auto& entry : reader.list("faults")) {
-    ActuatorFault fault;
-    std::string kind;
-    entry.read("kind", kind);
-    if (!parseActuatorFaultKind(kind, fault.kind)) {
-      entry.problem("kind", "'" + kind + "' is not an actuator fault (wheel_failed, wheel_stuck, "
-                                         "wheel_degraded, coil_open, thruster_failed)");
-    }
-    entry.read("channel", fault.channel);
-    entry.read("magnitude", fault.magnitude, "-");
-    double start_s = 0.0, duration_s = 0.0;
-    entry.read("start_s", start_s, "s");
-    entry.read("duration_s", duration_s, "s");
-    fault.start_ns = std::llround(start_s * 1e9);
-    fault.duration_ns = std::llround(duration_s * 1e9);
-    entry.problems(fault.validate(plant.body.wheel_count, static_cast<int>(plant.thrusters.size())));
-    entry.finish();
-    faults.push_back(fault);
-  }
-  if (faults.size() > static_cast<std::size_t>(ActuatorFaults::kMaxFaults)) {
-    reader.problem("faults", "at most " + std::to_string(ActuatorFaults::kMaxFaults) + " faults");
-  }
-  return faults;
+  return bus::readFaults<ActuatorFault>(reader, "-", kActuatorFaultKinds, ActuatorFaults::kMaxFaults,
+                                        parseActuatorFaultKind, validatorFor(plant));
 }
 
 std::vector<std::string> toActuatorFault(const msg::FaultCmd& command, const DynamicsParams& plant,
                                          ActuatorFault& fault) {
-  std::vector<std::string> problems;
-  const std::string kind = bus::text(command.kind());
-  if (!parseActuatorFaultKind(kind, fault.kind)) {
-    problems.push_back("kind: '" + kind + "' is not an actuator fault");
-  }
-  fault.channel = command.channel();
-  fault.magnitude = command.magnitude();
-  fault.start_ns = command.start_ns();
-  fault.duration_ns = command.duration_ns();
-  for (auto& p : fault.validate(plant.body.wheel_count, static_cast<int>(plant.thrusters.size()))) {
-    problems.push_back(std::move(p));
-  }
-  return problems;
+  return bus::faultFromCommand(command, fault, kActuatorFaultKinds, parseActuatorFaultKind,
+                               validatorFor(plant));
 }
 
 DynamicsServerParams readDynamicsServerParams(const bus::Scenario& scenario,
