@@ -34,16 +34,17 @@ struct RigRun {
 };
 
 /// Runs the scenario to its end into `out` with extra flags; requires success,
-/// reads the summary and removes the run directory (kept when the run failed).
+/// reads the summary and removes the run directory (kept when the run failed,
+/// or when `keep`).
 inline RigRun runScenario(const std::string& scenario, const std::string& out,
-                          const std::string& extra = "") {
+                          const std::string& extra = "", bool keep = false) {
   exportTestDomain();
   RigRun run;
   run.command = runCommand(kFlatsat + " run " + scenario + " -q --no-plots --out " + out + " " + extra);
   INFO(run.command.output);
   REQUIRE(run.command.exit_code == 0);
   std::ifstream(std::filesystem::path(out) / "summary.json") >> run.summary;
-  std::filesystem::remove_all(out);
+  if (!keep) std::filesystem::remove_all(out);
   return run;
 }
 

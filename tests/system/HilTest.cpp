@@ -5,10 +5,13 @@
 #include <catch2/catch.hpp>
 
 #include <chrono>
+#include <filesystem>
 #include <future>
+#include <map>
 #include <thread>
 
 #include "tests/support/Rig.hpp"
+#include "tests/support/SensorContract.hpp"
 
 using namespace flatsat;
 
@@ -20,7 +23,7 @@ TEST_CASE("a magnetometer bridge takes over mid-run and the emulator takes back 
   // the launch and is killed 20 s later; the run ends 20 s after that.
   auto run = std::async(std::launch::async, [&] {
     return test::runScenario(scenario, out,
-                             "--set duration_s=50 --set 'components.magnetometer_bridge.start_after_s=10 s'");
+                             "--set duration_s=50 --set 'components.magnetometer_bridge.start_after_s=10 s'", true);
   });
   std::this_thread::sleep_for(std::chrono::seconds(30));
   // [g]: the pattern must not match the shell running pkill itself.
@@ -49,4 +52,36 @@ TEST_CASE("a magnetometer bridge takes over mid-run and the emulator takes back 
   CHECK(switches[1]["time_s"].get<double>() > switches[0]["time_s"].get<double>() + 15.0);
   // The closed loop never noticed (the default rig's usual error is ~0.14 deg).
   CHECK(s["pointing_error_deg_max"].get<double>() < 0.5);
+
+  // Issue 4's conformance test, bridge side: the bridge's samples keep the
+  // magnetometer topic's contract exactly as the emulator's do, and so do the
+  // emulator's on either side of the hand-over (the recorder, an exclusive
+  // reader, has only the owner's samples).
+  REQUIRE(test::runCommand(test::kFlatsat + " export " + out + "/recording.sqlite --json -o " + out +
+                           "/export -t truth -t magnetometer")
+              .exit_code == 0);
+  std::map<std::uint64_t, nlohmann::json> truth;
+  for (auto& row : test::exportedRows(out + "/export", "truth")) truth[row["header"]["step"]] = row;
+  // Split at the recorded switches: the emulator before, the bridge, the emulator after.
+  const double take_over_s = switches[0]["time_s"].get<double>(), fall_back_s = switches[1]["time_s"].get<double>();
+  std::map<std::string, std::vector<nlohmann::json>> windows;
+  for (auto& row : test::exportedRows(out + "/export", "magnetometer")) {
+    const std::string source = row["header"]["source"].get<std::string>();
+    const double t_s = row["header"]["sim_time_ns"].get<double>() * 1e-9;
+    const bool before = t_s < 0.5 * (take_over_s + fall_back_s);  // the emulator's last sample shares the take-over step
+    windows[source == "magnetometer_bridge" ? source : source + (before ? " before" : " after")]
+        .push_back(row);
+  }
+  REQUIRE(windows.size() == 3);
+  const auto& contract = test::sensorContracts().at("magnetometer");
+  for (const auto& [window, samples] : windows) {
+    const std::string source = window.substr(0, window.find(' '));
+    INFO(window << ": " << samples.size() << " samples from step " << samples.front()["header"]["step"]
+                << " (bridge " << take_over_s << " s to " << fall_back_s << " s)");
+    CHECK(samples.size() > 50);
+    const auto breaches = test::contractBreaches(samples, truth, contract, {source, 0.1, 10.0, 0.25});
+    for (const auto& b : breaches) UNSCOPED_INFO(b);
+    CHECK(breaches.empty());
+  }
+  std::filesystem::remove_all(out);
 }

@@ -1,0 +1,65 @@
+// SPDX-License-Identifier: Apache-2.0
+// Issue 4's conformance test, emulator side: every sensor topic of a lockstep
+// rig keeps its contract (tests/support/SensorContract.hpp). HilTest checks
+// the magnetometer bridge's samples against the same contract.
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+
+#include "tests/support/Rig.hpp"
+#include "tests/support/SensorContract.hpp"
+
+namespace fs = std::filesystem;
+using namespace flatsat;
+
+TEST_CASE("every emulated sensor topic keeps its contract", "[system][conformance]") {
+  test::exportTestDomain();
+  const std::string out = test::freshDir("conformance");
+  const auto run = test::runCommand(test::kFlatsat + " run " + std::string(FLATSAT_SCENARIO_DIR) +
+                                    "/default.yaml -q --no-plots --out " + out +
+                                    " --set duration_orbits=null --set duration_s=120");
+  INFO(run.output);
+  REQUIRE(run.exit_code == 0);
+  std::string topics = " -t truth";
+  for (const auto& [topic, contract] : test::sensorContracts()) topics += " -t " + topic;
+  REQUIRE(test::runCommand(test::kFlatsat + " export " + out + "/recording.sqlite --json -o " + out +
+                           "/export" + topics)
+              .exit_code == 0);
+  std::map<std::uint64_t, nlohmann::json> truth;
+  for (auto& row : test::exportedRows(fs::path(out) / "export", "truth")) truth[row["header"]["step"]] = row;
+  for (const auto& [topic, contract] : test::sensorContracts()) {
+    const auto samples = test::exportedRows(fs::path(out) / "export", topic);
+    INFO(topic);
+    CHECK(samples.size() == 1201);
+    const auto breaches = test::contractBreaches(samples, truth, contract, {topic, 0.1, 10.0});
+    for (const auto& b : breaches) UNSCOPED_INFO(b);
+    CHECK(breaches.empty());
+  }
+  fs::remove_all(out);
+}
+
+TEST_CASE("the sensor contract catches a reading in the wrong unit, a late stamp and a wrong rate",
+          "[system][conformance]") {
+  // The checker itself, on hand-made samples against a steady truth.
+  std::map<std::uint64_t, nlohmann::json> truth;
+  std::vector<nlohmann::json> samples;
+  for (std::uint64_t k = 0; k < 50; ++k) {
+    truth[k] = {{"b_body_T", {2e-5, -1e-5, 3e-5}}};
+    samples.push_back({{"header", {{"step", k}, {"sim_time_ns", k * 100'000'000}, {"sample_time_ns", k * 100'000'000},
+                                   {"source", "magnetometer"}}},
+                       {"b_body_T", {2e-5, -1e-5, 3e-5}},
+                       {"valid", true}});
+  }
+  const auto& contract = test::sensorContracts().at("magnetometer");
+  CHECK(test::contractBreaches(samples, truth, contract, {"magnetometer", 0.1, 10.0}).empty());
+  auto in_nT = samples;
+  in_nT[7]["b_body_T"] = {2e4, -1e4, 3e4};
+  // Three components off by orders of magnitude, and the norm out of range.
+  CHECK(test::contractBreaches(in_nT, truth, contract, {"magnetometer", 0.1, 10.0}).size() == 4);
+  auto late = samples;
+  late[9]["header"]["sample_time_ns"] = 1'200'000'000;
+  // Stamped after its step, and the next sample's time goes back.
+  CHECK(test::contractBreaches(late, truth, contract, {"magnetometer", 0.1, 10.0}).size() == 2);
+  CHECK(test::contractBreaches(samples, truth, contract, {"magnetometer", 0.1, 5.0}).size() == 1);
+  CHECK(test::contractBreaches(samples, truth, contract, {"magnetometer_bridge", 0.1, 10.0}).size() == 20);
+}
