@@ -58,8 +58,10 @@ DynamicsServerNode::DynamicsServerNode(bus::Bus& bus, bus::NodeOptions options,
       wheel_count_(params.dynamics.body.wheel_count),
       model_(params.dynamics),
       fault_port_(bus, name(),
-                  [plant = params.dynamics](const msg::FaultCmd& command, ActuatorFault& fault) {
-                    return toActuatorFault(command, plant, fault);
+                  [wheels = params.dynamics.body.wheel_count,
+                   thrusters = static_cast<int>(params.dynamics.thrusters.size())](
+                      const msg::FaultCmd& command, ActuatorFault& fault) {
+                    return toActuatorFault(command, wheels, thrusters, fault);
                   },
                   fault_events_) {
   for (const auto& fault : params.faults) faults_.add(fault);

@@ -228,22 +228,22 @@ namespace {
 
 const std::string kActuatorFaultKinds = "wheel_failed, wheel_stuck, wheel_degraded, coil_open, thruster_failed";
 
-auto validatorFor(const DynamicsParams& plant) {
-  return [wheels = plant.body.wheel_count, thrusters = static_cast<int>(plant.thrusters.size())](
-             const ActuatorFault& f) { return f.validate(wheels, thrusters); };
+auto validatorFor(int wheels, int thrusters) {
+  return [wheels, thrusters](const ActuatorFault& f) { return f.validate(wheels, thrusters); };
 }
 
 }  // namespace
 
 std::vector<ActuatorFault> readActuatorFaults(bus::ParamReader& reader, const DynamicsParams& plant) {
   return bus::readFaults<ActuatorFault>(reader, "-", kActuatorFaultKinds, ActuatorFaults::kMaxFaults,
-                                        parseActuatorFaultKind, validatorFor(plant));
+                                        parseActuatorFaultKind,
+                                        validatorFor(plant.body.wheel_count, static_cast<int>(plant.thrusters.size())));
 }
 
-std::vector<std::string> toActuatorFault(const msg::FaultCmd& command, const DynamicsParams& plant,
+std::vector<std::string> toActuatorFault(const msg::FaultCmd& command, int wheels, int thrusters,
                                          ActuatorFault& fault) {
   return bus::faultFromCommand(command, fault, kActuatorFaultKinds, parseActuatorFaultKind,
-                               validatorFor(plant));
+                               validatorFor(wheels, thrusters));
 }
 
 DynamicsServerParams readDynamicsServerParams(const bus::Scenario& scenario,

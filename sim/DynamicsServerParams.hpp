@@ -30,9 +30,9 @@ DynamicsServerParams readDynamicsServerParams(const bus::Scenario& scenario,
 /// start_s, duration_s} for the plant's actuators (sim/ActuatorFaults.hpp).
 std::vector<ActuatorFault> readActuatorFaults(bus::ParamReader& reader, const DynamicsParams& plant);
 
-/// A fault command to the dynamics server as an actuator fault; every problem
-/// (empty: valid).
-std::vector<std::string> toActuatorFault(const msg::FaultCmd& command, const DynamicsParams& plant,
+/// A fault command to the dynamics server as an actuator fault, for a plant
+/// with that many wheels and thrusters; every problem (empty: valid).
+std::vector<std::string> toActuatorFault(const msg::FaultCmd& command, int wheels, int thrusters,
                                          ActuatorFault& fault);
 
 /// The plant sections alone (spacecraft, orbit, environment, initial), for

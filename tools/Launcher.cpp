@@ -110,9 +110,7 @@ class Externals {
   }
   std::string missing() {
     std::lock_guard lock(mutex_);
-    std::string names;
-    for (const auto& name : waiting_) names += " " + name;
-    return names;
+    return waitingNames();
   }
   /// Stepped external components that have not reported STOPPED or FAILED.
   std::size_t running() {
@@ -124,15 +122,20 @@ class Externals {
     std::lock_guard lock(mutex_);
     if (!failure_.empty() || waiting_.empty()) return failure_;
     if (std::chrono::duration<double>(Clock::now() - start_).count() > kExternalJoinTimeout) {
-      std::string names;
-      for (const auto& name : waiting_) names += " " + name;
       return "external components did not join the bus within " +
-             std::to_string(static_cast<int>(kExternalJoinTimeout)) + " s:" + names;
+             std::to_string(static_cast<int>(kExternalJoinTimeout)) + " s:" + waitingNames();
     }
     return "";
   }
 
  private:
+  /// " a b c" for the components not seen yet; called with mutex_ held.
+  std::string waitingNames() const {
+    std::string names;
+    for (const auto& name : waiting_) names += " " + name;
+    return names;
+  }
+
   static std::set<std::string> named(const bus::Scenario& scenario, bool stepped_only) {
     std::set<std::string> names;
     for (const auto& c : scenario.components) {
