@@ -59,6 +59,8 @@ inline constexpr TopicDef<WheelTorqueCmd, WheelTorqueCmdPubSubType> kWheelTorque
     "flatsat/wheel_torque_cmd", QosKind::kStepped, "attitude_controller"};
 inline constexpr TopicDef<DipoleCmd, DipoleCmdPubSubType> kDipoleCmd{
     "flatsat/dipole_cmd", QosKind::kStepped, "unloading_controller"};
+inline constexpr TopicDef<FlapCmd, FlapCmdPubSubType> kFlapCmd{
+    "flatsat/flap_cmd", QosKind::kStepped, "unloading_controller"};
 inline constexpr TopicDef<ThrusterCmd, ThrusterCmdPubSubType> kThrusterCmd{
     "flatsat/thruster_cmd", QosKind::kStepped, "thruster_sequencer"};
 inline constexpr TopicDef<Health, HealthPubSubType> kHealth{
@@ -84,7 +86,7 @@ void forEachTopic(F&& f) {
   f(kFaultCmd); f(kFaultEvent); f(kFieldEstimate); f(kCoilRequest); f(kCoilWindow);
   f(kThrusterCmd);
   f(kUnloadingModeCmd); f(kParamCmd); f(kCommandAck);
-  f(kStarTracker);
+  f(kStarTracker); f(kFlapCmd);
 }
 
 }  // namespace flatsat::bus

@@ -214,6 +214,7 @@ void DynamicsModel::updateTruth(const Applied& applied, double substep_s) {
   truth.f_aerodynamic_B_N = torques.aerodynamic.force_B_N;
   truth.tau_aerodynamic_B_Nm = torques.aerodynamic.torque_B_Nm;
   truth.tau_flaps_B_Nm = torques.flaps_aerodynamic.torque_B_Nm;
+  truth.f_flaps_B_N = torques.flaps_aerodynamic.force_B_N;
   truth.f_solar_pressure_B_N = torques.solar_pressure.force_B_N;
   truth.tau_solar_pressure_B_Nm = torques.solar_pressure.torque_B_Nm;
   truth.flap_angle_applied_rad = applied.flap_angle_rad;

@@ -41,6 +41,7 @@ msg::TruthState toMessage(const Truth& truth, int wheel_count, const bus::StepCo
   put(m.f_aerodynamic_body_N(), truth.f_aerodynamic_B_N);
   put(m.tau_aerodynamic_body_Nm(), truth.tau_aerodynamic_B_Nm);
   put(m.tau_flaps_body_Nm(), truth.tau_flaps_B_Nm);
+  put(m.f_flaps_body_N(), truth.f_flaps_B_N);
   put(m.f_solar_pressure_body_N(), truth.f_solar_pressure_B_N);
   put(m.tau_solar_pressure_body_Nm(), truth.tau_solar_pressure_B_Nm);
   put(m.flap_angle_rad(), truth.flap_angle_applied_rad);
@@ -71,6 +72,10 @@ DynamicsServerNode::DynamicsServerNode(bus::Bus& bus, bus::NodeOptions options,
   if (options_.schedule.count(std::string(bus::topics::kDipoleCmd.producer))) {
     dipole_cmd_ = &addInput(bus::topics::kDipoleCmd);
   }
+  // The coils' owner drives the flaps too, and publishes their angles only when fitted.
+  if (params.dynamics.flaps.fitted && options_.schedule.count(std::string(bus::topics::kFlapCmd.producer))) {
+    flap_cmd_ = &addInput(bus::topics::kFlapCmd);
+  }
   if (options_.schedule.count(std::string(bus::topics::kThrusterCmd.producer))) {
     thruster_cmd_ = &addInput(bus::topics::kThrusterCmd);
   }
@@ -96,6 +101,9 @@ void DynamicsServerNode::advance(const bus::StepContext& ctx) {
     cmd.dipole_B_Am2 = bus::vec3(dipole.m_body_Am2());
     cmd.dipole_quiet_fraction = dipole.quiet_fraction();
     dipole_cmd_age_steps_ = static_cast<std::int64_t>(ctx.step - dipole.header().step());
+  }
+  if (flap_cmd_ != nullptr && flap_cmd_->hasAny(ctx.step)) {
+    cmd.flap_angle_rad = bus::vec4(flap_cmd_->at(ctx.step).theta_rad());
   }
   if (thruster_cmd_ != nullptr && thruster_cmd_->hasAny(ctx.step)) {
     const auto on_time_s = thruster_cmd_->at(ctx.step).on_time_s();

@@ -19,6 +19,7 @@ class DynamicsServerNode final : public bus::TimeMaster {
   bus::WriterOf<bus::topics::kTruth>& truth_ = addOutput(bus::topics::kTruth);
   bus::InputOf<bus::topics::kWheelTorqueCmd>* wheel_cmd_ = nullptr;  // if a controller runs
   bus::InputOf<bus::topics::kDipoleCmd>* dipole_cmd_ = nullptr;      // if torquers are driven
+  bus::InputOf<bus::topics::kFlapCmd>* flap_cmd_ = nullptr;          // if flaps are fitted and driven
   bus::InputOf<bus::topics::kThrusterCmd>* thruster_cmd_ = nullptr;  // if a thruster sequencer runs
   static constexpr std::int64_t kNoCommand = -1;
   std::int64_t wheel_cmd_age_steps_ = kNoCommand;   // of the command held over the last step

@@ -9,6 +9,7 @@
 #include "bus/FaultFields.hpp"
 #include "sim/Constants.hpp"
 #include "sim/DynamicsServerSections.hpp"
+#include "sim/Frames.hpp"
 #include "sim/GeomagneticCoefficients.hpp"
 #include "sim/InitialDispersion.hpp"
 #include "sim/SunEphemeris.hpp"
@@ -194,12 +195,35 @@ void readInitial(bus::ParamReader initial, DynamicsParams& p, std::uint64_t seed
       p.q0_NB = sunOffsetAttitude(p, axis_B.normalized(), tilt_axis_B.normalized(), offset_rad);
     }
   }
+  // initial.attitude: s2_orbital starts in seed S2's orbital frame, turning with it,
+  // then turned by s2_orbital_offset_rad about s2_orbital_offset_axis_body.
+  std::string attitude;
+  initial.read("attitude", attitude);
+  double s2_offset_rad = 0.0;
+  Eigen::Vector3d s2_offset_axis_B = Eigen::Vector3d::UnitX();
+  initial.read("s2_orbital_offset_rad", s2_offset_rad, "rad");
+  initial.read("s2_orbital_offset_axis_body", s2_offset_axis_B, "-");
+  if (initial.has("attitude")) {
+    if (attitude != "s2_orbital") {
+      initial.problem("attitude", "'" + attitude + "' is not s2_orbital");
+    } else if (initial.has("q_inertial_body") || initial.has("sun_offset_rad")) {
+      initial.problem("attitude", "not with q_inertial_body or sun_offset_rad");
+    } else if (!(s2_offset_axis_B.norm() > 0.0)) {
+      initial.problem("s2_orbital_offset_axis_body", "must be a non-zero vector");
+    } else if (p.orbit.validate().empty()) {
+      const auto state = KeplerOrbit(p.orbit).at(0.0);
+      const Eigen::Quaterniond q_NT(R_N_S2Orbital(state.r_N_m, state.v_N_m_s));
+      p.q0_NB = (q_NT * Eigen::Quaterniond(Eigen::AngleAxisd(s2_offset_rad, s2_offset_axis_B.normalized())))
+                    .normalized();
+      p.w0_NB_B_rad_s = p.q0_NB.conjugate() * (state.r_N_m.cross(state.v_N_m_s) / state.r_N_m.squaredNorm());
+    }
+  }
   initial.read("w_body_rad_s", p.w0_NB_B_rad_s, "rad/s");
   initial.read("wheel_speed_rad_s", p.wheel_speed0_rad_s, "rad/s");
   double tumble_rate_rad_s = 0.0;
   initial.read("tumble_rate_rad_s", tumble_rate_rad_s, "rad/s");
   if (initial.has("tumble_rate_rad_s")) {
-    for (const char* key : {"q_inertial_body", "sun_offset_rad", "w_body_rad_s"}) {
+    for (const char* key : {"q_inertial_body", "sun_offset_rad", "w_body_rad_s", "attitude"}) {
       if (initial.has(key)) initial.problem(key, "not with tumble_rate_rad_s (the seed draws the tumble)");
     }
     if (!(tumble_rate_rad_s >= 0.0 && std::isfinite(tumble_rate_rad_s))) {

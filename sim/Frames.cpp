@@ -52,6 +52,10 @@ Eigen::Matrix3d R_N_LVLH(const Eigen::Vector3d& r_N_m, const Eigen::Vector3d& v_
   return r;
 }
 
+Eigen::Matrix3d R_N_S2Orbital(const Eigen::Vector3d& r_N_m, const Eigen::Vector3d& v_N_m_s) {
+  return R_N_LVLH(r_N_m, v_N_m_s) * Eigen::Vector3d(-1.0, 1.0, -1.0).asDiagonal();
+}
+
 Eigen::Matrix3d R_N_SunEcliptic(const Eigen::Vector3d& sun_N_unit, double jd_tt) {
   // North pole of the ecliptic in the equatorial frame: the z axis turned by ε about x.
   const double obliquity = meanObliquity_rad(jd_tt);

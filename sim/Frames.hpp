@@ -27,6 +27,12 @@ Eigen::Matrix3d R_N_RSW(const Eigen::Vector3d& r_N_m, const Eigen::Vector3d& v_N
 /// The same axes as RSW, relabelled: x_LVLH = S, y_LVLH = −W, z_LVLH = −R.
 Eigen::Matrix3d R_N_LVLH(const Eigen::Vector3d& r_N_m, const Eigen::Vector3d& v_N_m_s);
 
+/// Orbital frame of seed S2 (CNES FR2718105, Fig. 2; sim/Flaps.hpp): roll x along the
+/// track against the motion, yaw z away from the Earth's centre, pitch y = z × x
+/// (negative orbit normal): LVLH turned by 180° about its y axis. The frame turns with
+/// the orbit, at (r × v)/|r|².
+Eigen::Matrix3d R_N_S2Orbital(const Eigen::Vector3d& r_N_m, const Eigen::Vector3d& v_N_m_s);
+
 /// Sun-ecliptic reference frame of seed S0 (algorithms.md): X = Sun direction (the
 /// body x axis when Sun pointing), Y parallel to the ecliptic of date (towards the
 /// Sun's apparent motion), Z = X × Y normal to the ecliptic (towards its north pole).

@@ -51,6 +51,7 @@ struct Truth {
   Eigen::Vector3d f_aerodynamic_B_N = Eigen::Vector3d::Zero();          // [N] panels + flaps
   Eigen::Vector3d tau_aerodynamic_B_Nm = Eigen::Vector3d::Zero();       // [N m] panels + flaps
   Eigen::Vector3d tau_flaps_B_Nm = Eigen::Vector3d::Zero();             // [N m] the flaps' share of the above
+  Eigen::Vector3d f_flaps_B_N = Eigen::Vector3d::Zero();                // [N] the flaps' share of f_aerodynamic_B_N
   Eigen::Vector3d f_solar_pressure_B_N = Eigen::Vector3d::Zero();       // [N] panels + flaps
   Eigen::Vector3d tau_solar_pressure_B_Nm = Eigen::Vector3d::Zero();    // [N m] panels + flaps
   Eigen::Vector4d flap_angle_applied_rad = Eigen::Vector4d::Zero();     // [rad] after the limits

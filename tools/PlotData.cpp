@@ -66,7 +66,7 @@ PlotContext readPlotContext(const std::string& scenario_file) {
   if (scenario.hasComponent("attitude_controller")) {
     const Eigen::Vector3d axis =
         attitude_controller::readParams(scenario, {scenario.file, "attitude_controller", ""}, ignored)
-            .pointing_axis_B;
+            .law.pointing_axis_B;
     if (axis.norm() > 0) c.pointing_axis_B = axis.normalized();
   }
   return c;

@@ -79,7 +79,7 @@ Setup readSetup(const std::string& file) {
   bus::ConfigProblems problems;
   const auto server = sim::readDynamicsServerParams(scenario, "dynamics_server", problems);
   Setup s{server.dynamics, server.step_period_ns, server.orbit_period_s,
-          attitude_controller::readParams(scenario, {file, "attitude_controller", ""}, problems),
+          attitude_controller::readParams(scenario, {file, "attitude_controller", ""}, problems).law,
           wheel_tach::readParams(scenario, {file, "wheel_tach", ""}, problems).model,
           gyro::readParams(scenario, {file, "gyro", ""}, problems).model,
           sim::julianDate(server.dynamics.epoch)};

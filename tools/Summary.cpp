@@ -17,6 +17,8 @@
 #include "sim/DynamicsServerParams.hpp"
 #include "tools/SummaryS0.hpp"
 #include "tools/SummaryMagnetic.hpp"
+#include "tools/SummaryS2.hpp"
+#include "sim/Frames.hpp"
 #include "tools/SummaryEstimator.hpp"
 
 namespace flatsat::tools {
@@ -36,10 +38,12 @@ nlohmann::ordered_json summarize(const bus::Scenario& scenario, const std::strin
   bus::ConfigProblems ignored;  // the scenario was checked before the run
   const auto plant = sim::readPlant(scenario, ignored);
   Eigen::Vector3d axis_B = Eigen::Vector3d::UnitX();
+  bool s2_orbital = false;  // pointing judged against seed S2's orbital frame, not the Sun
   if (scenario.hasComponent("attitude_controller")) {
-    axis_B = attitude_controller::readParams(scenario, {scenario.file, "attitude_controller", ""},
-                                             ignored)
-                 .pointing_axis_B.normalized();
+    const auto controller =
+        attitude_controller::readParams(scenario, {scenario.file, "attitude_controller", ""}, ignored);
+    axis_B = controller.law.pointing_axis_B.normalized();
+    s2_orbital = controller.s2_orbital.has_value();
   }
   double capacity = plant.body.wheel_max_momentum_Nms.head(plant.body.wheel_count).minCoeff();
 
@@ -74,10 +78,15 @@ nlohmann::ordered_json summarize(const bus::Scenario& scenario, const std::strin
                         saturated[i] = at_limit;
                       }
                       if (t < scenario.acquisition_s) return;
-                      const Eigen::Vector3d axis_N = bus::quat(truth.q_inertial_body()) * axis_B;
-                      const double error = std::atan2(
-                          axis_N.cross(bus::vec3(truth.sun_inertial_unit())).norm(),
-                          axis_N.dot(bus::vec3(truth.sun_inertial_unit())));
+                      const Eigen::Quaterniond q_NB = bus::quat(truth.q_inertial_body());
+                      const Eigen::Vector3d axis_N = q_NB * axis_B;
+                      const double error =
+                          s2_orbital
+                              ? Eigen::Quaterniond(sim::R_N_S2Orbital(bus::vec3(truth.r_inertial_m()),
+                                                                      bus::vec3(truth.v_inertial_m_s())))
+                                    .angularDistance(q_NB)
+                              : std::atan2(axis_N.cross(bus::vec3(truth.sun_inertial_unit())).norm(),
+                                           axis_N.dot(bus::vec3(truth.sun_inertial_unit())));
                       pointing_max = std::max(pointing_max, error);
                       pointing_sum += error;
                       ++pointing_count;
@@ -188,6 +197,7 @@ nlohmann::ordered_json summarize(const bus::Scenario& scenario, const std::strin
   s["commands_refused"] = refused_total;
   addS0Metrics(s, scenario, recording);
   summarizeMagnetic(scenario, recording, s);
+  summarizeS2(scenario, recording, s);
   summarizeEstimator(scenario, recording, s);
   s["recording"] = recording_path;
   s["recording_sha256"] = recording.digest({std::string(bus::topics::kHealth.name)});

@@ -4,6 +4,7 @@
 #include <spdlog/spdlog.h>
 
 #include "bus/Convert.hpp"
+#include "components/common/ReferenceParams.hpp"
 #include "sim/DynamicsServerParams.hpp"
 
 namespace flatsat::attitude_controller {
@@ -32,8 +33,10 @@ msg::WheelTorqueCmd toMessage(const SunPointingControllerOutput& out) {
 }  // namespace
 
 AttitudeControllerNode::AttitudeControllerNode(bus::Bus& bus, bus::NodeOptions options,
-                                               const SunPointingControllerParams& params)
-    : Component(bus, std::move(options)), controller_(params) {}
+                                               const AttitudeControllerNodeParams& params)
+    : Component(bus, std::move(options)), controller_(params.law) {
+  if (params.s2_orbital) onboard_.emplace(*params.s2_orbital);
+}
 
 void AttitudeControllerNode::receive(const msg::ParamCmd& command) {
   if (bus::text(command.target()) != name()) return;
@@ -80,17 +83,31 @@ void AttitudeControllerNode::step(const bus::StepContext& ctx) {
   acks_.publish(ctx, name());
   const auto tach = tach_.at(ctx.step);
   const auto& used = last_tach_.update(tach);
-  auto message = toMessage(
-      controller_.step(toInput(estimate_.at(ctx.step), used), ctx.sim_time_ns));
+  const auto estimate = estimate_.at(ctx.step);
+  SunPointingControllerOutput out;
+  if (onboard_) {
+    const auto reference = onboard_->step(ctx.sim_time_ns);
+    AttitudeTargetInput in = s2OrbitalTarget(reference.r_N_m, reference.v_N_m_s);
+    in.q_NB_est = bus::quat(estimate.q_inertial_body());
+    in.w_NB_B_rad_s = bus::vec3(estimate.w_body_rad_s());
+    in.wheel_speed_rad_s = bus::vec4(used.wheel_speed_rad_s());
+    in.valid = estimate.valid() && in.q_NB_est.coeffs().allFinite() && in.q_NB_est.norm() > 0.0;
+    out = controller_.hold(in, ctx.sim_time_ns);
+  } else {
+    out = controller_.step(toInput(estimate, used), ctx.sim_time_ns);
+  }
+  auto message = toMessage(out);
   message.header(bus::makeHeader(ctx, name()));
   command_.write(message);
 }
 
-SunPointingControllerParams readParams(const bus::Scenario& scenario, const bus::NodeArgs& args,
-                                       bus::ConfigProblems& problems) {
+AttitudeControllerNodeParams readParams(const bus::Scenario& scenario, const bus::NodeArgs& args,
+                                        bus::ConfigProblems& problems) {
   bus::ConfigProblems reported_by_dynamics_server;
-  const auto body = sim::readPlant(scenario, reported_by_dynamics_server).body;
-  SunPointingControllerParams p;
+  const auto plant = sim::readPlant(scenario, reported_by_dynamics_server);
+  const auto& body = plant.body;
+  AttitudeControllerNodeParams node;
+  SunPointingControllerParams& p = node.law;
   p.wheels = {body.wheel_count, body.wheel_axes_B, body.wheel_inertia_kg_m2};
   auto r = scenario.componentParams(args.name, problems);
   r.read("kp_Nm_per_rad", p.kp_Nm_per_rad, "N m/rad");
@@ -98,9 +115,18 @@ SunPointingControllerParams readParams(const bus::Scenario& scenario, const bus:
   r.read("max_torque_Nm", p.max_torque_Nm, "N m");
   r.read("max_rate_rad_s", p.max_rate_rad_s, "rad/s");
   r.read("pointing_axis_body", p.pointing_axis_B, "-");
+  std::string target = "sun";
+  r.read("target", target);
+  const auto onboard = readReferenceModel(r, plant);
+  if (target == "s2_orbital") {
+    node.s2_orbital = onboard;
+    r.problems(onboard.validate());
+  } else if (target != "sun") {
+    r.problem("target", "must be sun or s2_orbital, not \"" + target + "\"");
+  }
   r.problems(p.validate());
   r.finish();
-  return p;
+  return node;
 }
 
 }  // namespace flatsat::attitude_controller

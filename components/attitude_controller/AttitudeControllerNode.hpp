@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #pragma once
 #include <mutex>
+#include <optional>
 #include <vector>
 
 #include "bus/CommandAcks.hpp"
@@ -8,16 +9,24 @@
 #include "bus/NodeMain.hpp"
 #include "components/common/LastValid.hpp"
 #include "components/attitude_controller/SunPointingController.hpp"
+#include "components/estimator/ReferenceModel.hpp"
 
 namespace flatsat::attitude_controller {
 
-/// Wheel-based Sun pointing: attitude estimate and wheel speeds in, wheel
-/// motor torques out. Its gains and limits can be changed while it runs
-/// (flatsat/param_cmd, `flatsat cmd param`), each change acknowledged.
+struct AttitudeControllerNodeParams {
+  SunPointingControllerParams law;
+  /// `target: s2_orbital`: hold seed S2's orbital frame (sim::R_N_S2Orbital) from this
+  /// onboard orbit; nullopt (`target: sun`, the default): point pointing_axis_body at the Sun.
+  std::optional<estimator::ReferenceModelParams> s2_orbital;
+};
+
+/// Wheel-based pointing: attitude estimate and wheel speeds in, wheel motor
+/// torques out; the target is the Sun or seed S2's orbital frame. Its gains and
+/// limits can be changed while it runs (flatsat/param_cmd, `flatsat cmd param`),
+/// each change acknowledged.
 class AttitudeControllerNode final : public bus::Component {
  public:
-  AttitudeControllerNode(bus::Bus& bus, bus::NodeOptions options,
-                         const SunPointingControllerParams& params);
+  AttitudeControllerNode(bus::Bus& bus, bus::NodeOptions options, const AttitudeControllerNodeParams& params);
 
  private:
   void step(const bus::StepContext& ctx) override;
@@ -32,6 +41,7 @@ class AttitudeControllerNode final : public bus::Component {
   bus::WriterOf<bus::topics::kWheelTorqueCmd>& command_ =
       addOutput(bus::topics::kWheelTorqueCmd);
   SunPointingController controller_;
+  std::optional<estimator::ReferenceModel> onboard_;  // local orbital target only
   std::mutex commands_mutex_;
   std::vector<msg::ParamCmd> pending_;  // received, applied at the next step
   bus::CommandAcks acks_{bus_};
@@ -40,7 +50,7 @@ class AttitudeControllerNode final : public bus::Component {
 };
 
 /// components.<name>, with the wheel geometry from spacecraft.wheels.
-SunPointingControllerParams readParams(const bus::Scenario& scenario, const bus::NodeArgs& args,
+AttitudeControllerNodeParams readParams(const bus::Scenario& scenario, const bus::NodeArgs& args,
                                        bus::ConfigProblems& problems);
 
 }  // namespace flatsat::attitude_controller

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include "components/common/WheelGeometry.hpp"
 
@@ -30,6 +31,19 @@ struct SunPointingControllerInput {
   Eigen::Vector4d wheel_speed_rad_s = Eigen::Vector4d::Zero();  // [rad/s] tachometers, rel. to body
   bool valid = false;  // estimate usable; false → zero torque
 };
+
+/// A whole-attitude target instead of the Sun (the local orbital frame of seed S2).
+struct AttitudeTargetInput {
+  Eigen::Quaterniond q_NB_est = Eigen::Quaterniond::Identity();  // [-] estimated attitude, Hamilton
+  Eigen::Quaterniond q_NT = Eigen::Quaterniond::Identity();      // [-] target attitude, Hamilton
+  Eigen::Vector3d w_NT_N_rad_s = Eigen::Vector3d::Zero();        // [rad/s] target's rate, inertial
+  Eigen::Vector3d w_NB_B_rad_s = Eigen::Vector3d::Zero();        // [rad/s] estimated body rate
+  Eigen::Vector4d wheel_speed_rad_s = Eigen::Vector4d::Zero();   // [rad/s] tachometers, rel. to body
+  bool valid = false;  // estimate and target usable; false → zero torque
+};
+
+/// Seed S2's orbital frame (sim::R_N_S2Orbital) as a target, turning at (r × v)/|r|².
+AttitudeTargetInput s2OrbitalTarget(const Eigen::Vector3d& r_N_m, const Eigen::Vector3d& v_N_m_s);
 
 struct SunPointingControllerOutput {
   Eigen::Vector3d tau_cmd_B_Nm = Eigen::Vector3d::Zero();     // [Nm] torque the wheels put on the body
@@ -65,9 +79,16 @@ class SunPointingController {
   /// The law does not depend on time; t_ns [ns] is kept for the common API.
   Output step(const Input& in, std::int64_t t_ns);
 
+  /// The same regulator on a whole-attitude target: e is the rotation vector taking the body
+  /// onto the target (body axes), the rate term acts on ω − ω_target.
+  Output hold(const AttitudeTargetInput& in, std::int64_t t_ns);
+
   const Params& params() const { return params_; }
 
  private:
+  Output regulate(double angle_rad, const Eigen::Vector3d& axis_B, const Eigen::Vector3d& w_error_B_rad_s,
+                  const Eigen::Vector3d& w_NB_B_rad_s, const Eigen::Vector4d& wheel_speed_rad_s) const;
+
   Params params_;
   Eigen::Matrix<double, 3, 4> A_B_;      // active axes, unused columns zero
   Eigen::Matrix<double, 4, 3> A_pinv_;   // A⁺ of the active axes, unused rows zero

@@ -37,6 +37,8 @@ ReferenceVectors ReferenceModel::step(std::int64_t t_ns) {
   const Eigen::Vector3d r_E = R_EN * r_N;
   out.b_N_T = R_EN.transpose() * (harmonics_ ? harmonics_->b_E_T(r_E) : field_.b_E_T(r_E));
   out.orbit_normal_N_unit = r_N.cross(state.v_N_m_s).normalized();
+  out.r_N_m = r_N;
+  out.v_N_m_s = state.v_N_m_s;
   out.sun_N_unit =
       (sim::sunPosition_N_m(jd + sim::kTtMinusUtc_s / 86400.0) - r_N).normalized();
   return out;

@@ -34,6 +34,8 @@ struct ReferenceVectors {
   Eigen::Vector3d sun_N_unit = Eigen::Vector3d::UnitX();  // [-] spacecraft -> Sun, inertial
   Eigen::Vector3d b_N_T = Eigen::Vector3d::Zero();        // [T] field at the spacecraft, inertial
   Eigen::Vector3d orbit_normal_N_unit = Eigen::Vector3d::UnitZ();  // [-] r × v / |r × v|, inertial
+  Eigen::Vector3d r_N_m = Eigen::Vector3d::Zero();        // [m] onboard position, inertial
+  Eigen::Vector3d v_N_m_s = Eigen::Vector3d::Zero();      // [m/s] onboard velocity, inertial
 };
 
 class ReferenceModel {

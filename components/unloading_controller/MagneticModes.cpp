@@ -36,6 +36,7 @@ std::vector<std::string> MagneticModesParams::validate() const {
   require(errors, after_detumble != MagneticMode::kDetumble, "after_detumble", "must differ from detumble");
   requirePositive(errors, "handover_rate_rad_s", handover_rate_rad_s);
   requireNonNegative(errors, "handover_hold_s", handover_hold_s);
+  if (aero) append(errors, prefixed("aero.", aero->validate()));
   return errors;
 }
 
@@ -50,6 +51,7 @@ MagneticModes::MagneticModes(const Params& params)
     for (const auto& e : errors) message += " " + e + ";";
     throw std::invalid_argument(message);
   }
+  if (params_.aero) aero_.emplace(*params_.aero);
 }
 
 void MagneticModes::reset() { enter(params_.initial_mode); }
@@ -78,6 +80,13 @@ MagneticModesOutput MagneticModes::step(const Input& in, std::int64_t t_ns) {
     out.saturated = u.saturated;
     out.h_above_start = h > params_.unload.h_start_Nms;
     out.h_below_stop = h < params_.unload.h_stop_Nms;
+    if (aero_) {
+      // The law's torque in full: its coils alone give only the part ⟂ B, M × B = −k H⊥.
+      if (u.active) out.c_demand_B_Nm = -params_.unload.gain_per_s * u.h_B_Nms;
+      out.aero = aero_->step({out.c_demand_B_Nm, in.b_B_T, in.flap_scale_Nm}, t_ns);
+      out.m_B_Am2 = out.aero->m_B_Am2;
+      out.saturated = out.aero->coils_saturated || out.aero->flaps_saturated;
+    }
     return out;
   }
   BdotInput law_in{in.b_B_T, in.b_valid, std::nullopt};

@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 
+#include "components/unloading_controller/AeroAllocation.hpp"
 #include "components/unloading_controller/Bdot.hpp"
 #include "components/unloading_controller/CrossProductUnloading.hpp"
 #include "components/unloading_controller/SpinCapture.hpp"
@@ -29,6 +30,9 @@ struct MagneticModesParams {
   std::optional<MagneticMode> after_detumble;
   double handover_rate_rad_s = 0.0035;  // [rad/s] detumble's |P|/|B| below this counts as slow, > 0
   double handover_hold_s = 600.0;       // [s] slow for this long, without a break, hands over, >= 0
+  /// [-] kUnload with seed S2's flaps: the law's torque −k H is split between coils and flaps
+  /// (its max_dipole_Am2 and min_field_T are the unloading law's); nullopt: coils alone.
+  std::optional<AeroAllocationParams> aero;
 
   /// Every violation as "field: reason"; the unloading law's unprefixed (its keys sit at the
   /// top of the component's section), the others' prefixed "detumble." and "spin_capture.".
@@ -46,6 +50,7 @@ struct MagneticModesInput {
   Eigen::Vector3d b_B_T = Eigen::Vector3d::Zero();              // [T] measured field, body axes
   bool b_valid = false;                                         // field usable
   std::optional<OnboardField> onboard;                          // needed by kSpinCapture with kModel
+  double flap_scale_Nm = 0.0;  // [N m] K = 2ρA_pV²l of the flaps now (aero only); <= 0: no air
 };
 
 struct MagneticModesOutput {
@@ -59,6 +64,8 @@ struct MagneticModesOutput {
   double rate_error_rad_s = 0.0;   // [rad/s] B-dot modes: |P|/|B|; 0 before the first Ḃ
   bool rate_below_handover = false;  // kDetumble: rate_error_rad_s < handover_rate_rad_s
   bool handover = false;           // detumble handed over by itself this step
+  Eigen::Vector3d c_demand_B_Nm = Eigen::Vector3d::Zero();  // [N m] kUnload with aero: −k H when active
+  std::optional<AeroAllocationOutput> aero;                 // kUnload with aero: the split and flap angles
 };
 
 /// The coils' owner: runs one of cross-product unloading, B-dot detumble or the
@@ -95,6 +102,7 @@ class MagneticModes {
   CrossProductUnloading unload_;
   Bdot detumble_;
   Bdot spin_;
+  std::optional<AeroAllocation> aero_;
   MagneticMode mode_;
   std::optional<std::int64_t> slow_since_ns_;  // detumble: start of the current slow stretch
 };

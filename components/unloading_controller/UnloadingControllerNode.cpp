@@ -9,6 +9,7 @@
 #include "bus/Convert.hpp"
 #include "components/common/ReferenceParams.hpp"
 #include "sim/DynamicsServerParams.hpp"
+#include "sim/Constants.hpp"
 #include "sim/KeplerOrbit.hpp"
 
 namespace flatsat::unloading_controller {
@@ -52,6 +53,8 @@ msg::DipoleCmd toMessage(const MagneticModesOutput& out) {
   return m;
 }
 
+constexpr std::uint8_t kNoSplit = 255;  // FlapCmd.split: no aero section, flaps neutral
+
 const char* name(MagneticMode mode) {
   switch (mode) {
     case MagneticMode::kUnload: return "unload";
@@ -73,6 +76,42 @@ void readMode(bus::ParamReader& r, const std::string& key, std::optional<Magneti
   if (!mode) r.problem(key, "'" + text + "' is not unload, detumble or spin_capture");
 }
 
+/// The `aero:` section (seed S2) and, with spacecraft.flaps fitted, what the split needs to know.
+void readAero(bus::ParamReader& r, const sim::DynamicsParams& plant, UnloadingControllerNodeParams& node) {
+  if (plant.flaps.fitted) {
+    node.flaps = FlapKnowledge{plant.flaps.plate_area_m2, plant.flaps.lever_arm_m, plant.atmosphere,
+                               plant.density_kg_m3};
+  }
+  if (!r.has("aero")) return;
+  auto a = r.section("aero");
+  if (!plant.flaps.fitted) {
+    a.problem("split", "spacecraft.flaps is not fitted: no flaps to split the torque with");
+  }
+  AeroAllocationParams p;
+  p.max_dipole_Am2 = node.modes.unload.max_dipole_Am2;
+  p.min_field_T = node.modes.unload.min_field_T;
+  // The plant's limit, and never past asin √(2/3), where a plate's roll torque peaks.
+  p.flaps.max_angle_rad = std::min(plant.flaps.max_angle_rad, p.flaps.max_angle_rad);
+  std::string split = "magnetic_aero";
+  a.read("split", split);
+  if (const auto parsed = aeroSplitFromName(split)) {
+    p.split = *parsed;
+  } else {
+    a.problem("split", "'" + split + "' is not magnetic_aero, flaps_only or drag_only");
+  }
+  a.read("max_angle_rad", p.flaps.max_angle_rad, "rad");
+  a.read("drag_only_angle_rad", p.drag_only_angle_rad, "rad");
+  int failed = 0;
+  a.read("failed_flap", failed);
+  if (failed < 0 || failed > 4) {
+    a.problem("failed_flap", "must be 1..4 (plate theta1..theta4), or 0 for none");
+  } else if (failed > 0) {
+    p.flaps.failed[static_cast<std::size_t>(failed - 1)] = true;
+  }
+  a.finish();
+  node.modes.aero = p;
+}
+
 }  // namespace
 
 UnloadingControllerNode::UnloadingControllerNode(bus::Bus& bus, bus::NodeOptions options,
@@ -83,6 +122,11 @@ UnloadingControllerNode::UnloadingControllerNode(bus::Bus& bus, bus::NodeOptions
       arbiter_(params.modes.unload.max_dipole_Am2),
       quiet_fraction_(params.quiet_fraction) {
   if (params.onboard) onboard_.emplace(*params.onboard);
+  if (params.flaps) {
+    flaps_ = params.flaps;
+    if (flaps_->atmosphere) atmosphere_.emplace(*flaps_->atmosphere);
+    flap_cmd_ = &addOutput(bus::topics::kFlapCmd);
+  }
   switch (params.field_source) {
     case FieldSource::kMagnetometer: magnetometer_ = &addInput(bus::topics::kMagnetometer); break;
     case FieldSource::kS0Estimate:
@@ -130,6 +174,7 @@ void UnloadingControllerNode::step(const bus::StepContext& ctx) {
   if (onboard_) {
     const auto reference = onboard_->step(ctx.sim_time_ns);
     in.onboard = OnboardField{reference.b_N_T, reference.orbit_normal_N_unit};
+    if (flaps_) in.flap_scale_Nm = flapScale_Nm(reference);
   }
   if (magnetometer_ != nullptr) {
     const auto field = magnetometer_->at(ctx.step);
@@ -165,6 +210,37 @@ void UnloadingControllerNode::step(const bus::StepContext& ctx) {
   auto window = toMessage(coils.report);
   window.header(bus::makeHeader(ctx, name()));
   coil_window_.write(window);
+  if (flap_cmd_ != nullptr) publishFlaps(ctx, in, out);
+}
+
+double UnloadingControllerNode::flapScale_Nm(const estimator::ReferenceVectors& reference) const {
+  const Eigen::Vector3d wind_N =
+      reference.v_N_m_s - Eigen::Vector3d(0.0, 0.0, sim::kEarthRotationRate_rad_s).cross(reference.r_N_m);
+  const double density = atmosphere_ ? atmosphere_->density_kg_m3(reference.r_N_m, reference.sun_N_unit)
+                                     : flaps_->density_kg_m3;
+  return 2.0 * density * flaps_->plate_area_m2 * wind_N.squaredNorm() * flaps_->lever_arm_m;
+}
+
+void UnloadingControllerNode::publishFlaps(const bus::StepContext& ctx, const MagneticModesInput& in,
+                                           const MagneticModesOutput& out) {
+  msg::FlapCmd m;
+  m.split(kNoSplit);
+  if (out.aero) {
+    const AeroAllocationOutput& a = *out.aero;
+    bus::put(m.theta_rad(), a.flaps.theta_rad);
+    m.split(static_cast<std::uint8_t>(modes_.params().aero->split));
+    m.branch(static_cast<std::uint8_t>(a.flaps.branch));
+    m.replaced(a.flaps.replaced);
+    bus::put(m.c_demand_body_Nm(), out.c_demand_B_Nm);
+    bus::put(m.c_aero_body_Nm(), a.c_aero_B_Nm);
+    bus::put(m.c_magnetic_body_Nm(), a.c_magnetic_B_Nm);
+    m.delivered(a.delivered);
+    m.flaps_saturated(a.flaps_saturated);
+  }
+  bus::put(m.b_body_T(), in.b_B_T);
+  m.flap_scale_Nm(in.flap_scale_Nm);
+  m.header(bus::makeHeader(ctx, name()));
+  flap_cmd_->write(m);
 }
 
 UnloadingControllerNodeParams readParams(const bus::Scenario& scenario, const bus::NodeArgs& args,
@@ -221,6 +297,7 @@ UnloadingControllerNodeParams readParams(const bus::Scenario& scenario, const bu
   }
   s.finish();
   const auto onboard = readReferenceModel(r, plant);
+  readAero(r, plant, node);
 
   std::string source = "magnetometer";
   r.read("field_source", source);
@@ -235,7 +312,7 @@ UnloadingControllerNodeParams readParams(const bus::Scenario& scenario, const bu
   } else if (source != "magnetometer") {
     r.problem("field_source", "must be magnetometer, s0_estimate or model_attitude, not \"" + source + "\"");
   }
-  if (p.spin.field_turn == FieldTurn::kModel || node.field_source == FieldSource::kModelAttitude) {
+  if (p.spin.field_turn == FieldTurn::kModel || node.field_source == FieldSource::kModelAttitude || p.aero) {
     node.onboard = onboard;
   }
   r.problems(p.validate());

@@ -11,6 +11,7 @@
 #include "components/unloading_controller/CoilArbiter.hpp"
 #include "components/estimator/ReferenceModel.hpp"
 #include "components/unloading_controller/MagneticModes.hpp"
+#include "sim/Atmosphere.hpp"
 
 namespace flatsat::unloading_controller {
 
@@ -19,6 +20,15 @@ enum class FieldSource {
   kMagnetometer,  ///< flatsat/magnetometer
   kS0Estimate,    ///< flatsat/field_estimate (seed S0, no magnetometer); serves coil requests
   kModelAttitude, ///< onboard field model turned into body axes by flatsat/attitude_estimate
+};
+
+/// What the flight software knows of seed S2's flaps to turn torque into angles:
+/// K = 2ρA_pV²l (sim/Flaps.hpp) from the onboard orbit and density model.
+struct FlapKnowledge {
+  double plate_area_m2 = 0.0;  // [m²] A_p, > 0
+  double lever_arm_m = 0.0;    // [m] l, > 0
+  std::optional<sim::AtmosphereParams> atmosphere;  // onboard density model; nullopt: the constant
+  double density_kg_m3 = 0.0;  // [kg/m³] constant density without a model, >= 0
 };
 
 struct UnloadingControllerNodeParams {
@@ -30,6 +40,9 @@ struct UnloadingControllerNodeParams {
   /// Onboard orbit and field model; set for kModelAttitude and when spin capture
   /// takes the field's turn from it.
   std::optional<estimator::ReferenceModelParams> onboard;
+  /// Set when spacecraft.flaps is fitted: flatsat/flap_cmd is published every step
+  /// (neutral without modes.aero), and modes.aero needs onboard for K.
+  std::optional<FlapKnowledge> flaps;
 };
 
 /// The mode a command asks for; nothing when its mode is not one of
@@ -53,6 +66,9 @@ class UnloadingControllerNode final : public bus::Component {
  private:
   void step(const bus::StepContext& ctx) override;
   void receive(const msg::ModeCmd& command);
+  /// [N m] K = 2ρA_pV²l with the air's velocity relative to the spacecraft from the onboard orbit.
+  double flapScale_Nm(const estimator::ReferenceVectors& reference) const;
+  void publishFlaps(const bus::StepContext& ctx, const MagneticModesInput& in, const MagneticModesOutput& out);
 
   bus::InputOf<bus::topics::kWheelTach>& tach_ = addInput(bus::topics::kWheelTach);
   LastValid<msg::WheelTachReading> last_tach_;  // rides through tachometer dropouts
@@ -71,6 +87,9 @@ class UnloadingControllerNode final : public bus::Component {
   CoilArbiter arbiter_;
   double quiet_fraction_;
   std::optional<estimator::ReferenceModel> onboard_;
+  std::optional<FlapKnowledge> flaps_;
+  std::optional<sim::Atmosphere> atmosphere_;
+  bus::WriterOf<bus::topics::kFlapCmd>* flap_cmd_ = nullptr;  // flaps fitted
 };
 
 /// components.<name>: the unloading keys (gain_per_s, h_*), `mode:`, a
@@ -79,7 +98,8 @@ class UnloadingControllerNode final : public bus::Component {
 /// and the orbital rate from the orbit; `field_source: magnetometer | s0_estimate |
 /// model_attitude`;
 /// the onboard models (`reference_field`, `reference_orbit`) for model_attitude
-/// and `spin_capture.field_turn: model`.
+/// and `spin_capture.field_turn: model`; with spacecraft.flaps, an `aero:` section
+/// (seed S2: split, max_angle_rad, failed_flaps, drag_only_angle_rad).
 UnloadingControllerNodeParams readParams(const bus::Scenario& scenario, const bus::NodeArgs& args,
                                bus::ConfigProblems& problems);
 
