@@ -49,6 +49,30 @@ TEST_CASE("B-dot detumbles the rig from 10 deg/s below 0.2 deg/s within 3 orbits
   CHECK(s["coil_duty"].get<double>() <= 1.0);
 }
 
+TEST_CASE("B-dot: all 50 seeded tumbles of 10 deg/s below 0.2 deg/s within 3 orbits", "[system][bdot]") {
+  // `flatsat study detumble` runs detumble.yaml's plant, magnetometer and controller without
+  // DDS; a case counts when its rate is below 0.2 deg/s within 3 orbits and stays there.
+  const auto command = test::runCommand(kFlatsat + " study detumble --cases 50");
+  INFO(command.output);
+  REQUIRE(command.exit_code == 0);
+  std::istringstream lines(command.output);
+  std::string line;
+  int rows = 0;
+  while (std::getline(lines, line)) {
+    int seed = 0;
+    double seconds = 0, orbits = 0, rate = 0, duty = 0;
+    if (std::sscanf(line.c_str(), "| %d | %lf | %lf | %lf | %lf |", &seed, &seconds, &orbits, &rate, &duty) != 5) {
+      continue;
+    }
+    ++rows;
+    INFO(line);
+    CHECK(orbits <= 3.0);
+    CHECK(rate < 0.2);
+    CHECK(duty > 0.0);
+  }
+  CHECK(rows == 50);
+}
+
 TEST_CASE("S4 spin capture holds body z within 5 deg of the orbit normal at 2 deg/s within 5 orbits", "[system][bdot]") {
   const auto s = runScenario("s4_spin.yaml", "s4spin", "--seed 3");
   INFO(s.dump(2));
