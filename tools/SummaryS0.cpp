@@ -58,6 +58,8 @@ void addS0Metrics(nlohmann::ordered_json& summary, const bus::Scenario& scenario
     roll2 += roll * roll;
     ++n;
   });
+  // Every estimator publishes the topic; a rig without S0 windows gets no S0 keys.
+  if (cycles == 0 && failed == 0 && n == 0) return;
   summary["field_error_pct_rms"] = n ? 100.0 * std::sqrt(field2 / n) : NAN;
   summary["alpha_error_deg_rms"] = n ? std::sqrt(roll2 / n) * 180.0 / kPi : NAN;
   summary["s0_windows_solved"] = cycles;

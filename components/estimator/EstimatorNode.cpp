@@ -143,6 +143,7 @@ void EstimatorNode::stepS0(const bus::StepContext& ctx, const msg::GyroReading& 
     request.quiet_s(out.request->quiet_s);
     request.pulse_s(out.request->pulse_s);
     request.quiet_after_s(out.request->quiet_after_s);
+    request.law_pulse_min_Am2(out.request->law_pulse_min_Am2);
   }
   coil_request_.write(request);
 
@@ -275,6 +276,7 @@ EstimatorNodeParams readParams(const bus::Scenario& scenario, const bus::NodeArg
     s0.read("average_s", q.average_s, "s");
     s0.read("alternate_sign", q.alternate_sign);
     s0.read("unloading_sign", q.unloading_sign);
+    s0.read("law_pulse_min_Am2", q.law_pulse_min_Am2, "A m^2");
     s0.read("max_sun_offset_rad", q.max_sun_offset_rad, "rad");
     bool total_momentum = false;
     s0.read("total_momentum", total_momentum);

@@ -24,6 +24,7 @@ std::vector<std::string> S0EstimatorParams::validate() const {
                  std::isfinite(cycle_period_s),
           "cycle_period_s", "must be finite and >= quiet_s + pulse_s + settle_s + quiet_after_s");
   requirePositive(e, "max_sun_offset_rad", max_sun_offset_rad);
+  requireNonNegative(e, "law_pulse_min_Am2", law_pulse_min_Am2);
   require(e, isNonNegative(average_s) && average_s <= quiet_s / 2, "average_s",
           "must be finite, >= 0 and <= quiet_s / 2");
   return e;
@@ -154,6 +155,7 @@ S0EstimatorOutput S0Estimator::step(const Input& in, std::int64_t t_ns) {
     r.quiet_s = params_.quiet_s;
     r.pulse_s = params_.pulse_s;
     r.quiet_after_s = params_.settle_s + params_.quiet_after_s;
+    r.law_pulse_min_Am2 = params_.law_pulse_min_Am2;
     if (params_.alternate_sign && !(params_.unloading_sign && valid_)) sign_ = -sign_;
     pending_ = r;
     next_request_ns_ = t_ns + toNs(params_.cycle_period_s);

@@ -32,6 +32,11 @@ struct S0EstimatorParams {
   /// (sign of (H × B)_x, the cross-product law's x coil): the window doubles as an
   /// unloading pulse (the seed reuses unloading pulses as its windows); overrides alternate_sign
   bool unloading_sign = false;
+  /// [A m²] > 0: ask the coil owner to hold its unloading law's own dipole as the pulse when
+  /// the law drives at least this much along x (and mostly along x) at the pulse start: the
+  /// unloading pulse in progress is the window (DE3606636), and the unloading goes on; the
+  /// ±Mx pulse otherwise. 0: always ±Mx. >= 0
+  double law_pulse_min_Am2 = 0.0;
   double max_sun_offset_rad = 0.0175;  // [rad] a window starts only with body x this close to the Sun, > 0
 
   /// Every violation as "field: reason"; empty when valid.
@@ -43,6 +48,7 @@ struct S0Request {
   std::uint32_t id = 0;                                // [-] > 0, new per cycle
   Eigen::Vector3d m_B_Am2 = Eigen::Vector3d::Zero();   // [A m²] dipole for the pulse
   double quiet_s = 0.0, pulse_s = 0.0, quiet_after_s = 0.0;  // [s]
+  double law_pulse_min_Am2 = 0.0;  // [A m²] as S0EstimatorParams (CoilRequest)
 };
 
 struct S0EstimatorInput {

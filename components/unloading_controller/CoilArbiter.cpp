@@ -11,7 +11,8 @@ std::int64_t toNs(double s) { return static_cast<std::int64_t>(std::llround(s * 
 
 bool windowValid(const CoilRequest& r) {
   return r.quiet_s >= 0.0 && r.pulse_s > 0.0 && r.quiet_after_s >= 0.0 && r.m_B_Am2.allFinite() &&
-         std::isfinite(r.quiet_s + r.pulse_s + r.quiet_after_s);
+         std::isfinite(r.quiet_s + r.pulse_s + r.quiet_after_s) && r.law_pulse_min_Am2 >= 0.0 &&
+         std::isfinite(r.law_pulse_min_Am2);
 }
 }  // namespace
 
@@ -24,6 +25,8 @@ CoilArbiter::CoilArbiter(const Eigen::Vector3d& max_dipole_Am2) : max_dipole_Am2
 void CoilArbiter::reset() {
   window_ = {};
   last_served_ = 0;
+  law_pulse_min_Am2_ = 0.0;
+  pulse_started_ = false;
 }
 
 CoilArbiterOutput CoilArbiter::step(const std::optional<CoilRequest>& request,
@@ -48,6 +51,8 @@ CoilArbiterOutput CoilArbiter::step(const std::optional<CoilRequest>& request,
       window_.pulse_end_ns = window_.t1_ns + toNs(request->pulse_s);
       window_.t2_ns = window_.pulse_end_ns + toNs(request->quiet_after_s);
       window_.m_B_Am2 = request->m_B_Am2;
+      law_pulse_min_Am2_ = request->law_pulse_min_Am2;
+      pulse_started_ = false;
     }
   }
   CoilArbiterOutput out;
@@ -59,6 +64,16 @@ CoilArbiterOutput CoilArbiter::step(const std::optional<CoilRequest>& request,
                       : t_ns < window_.pulse_end_ns ? CoilPhase::kPulse
                                                     : CoilPhase::kQuietAfter;
       out.window_active = true;
+      if (window_.phase == CoilPhase::kPulse && !pulse_started_) {
+        pulse_started_ = true;
+        const Eigen::Vector3d direction = window_.m_B_Am2.normalized();
+        const double along = std::abs(law_m_B_Am2.dot(direction));
+        if (law_pulse_min_Am2_ > 0.0 && along >= law_pulse_min_Am2_ && along >= 0.5 * law_m_B_Am2.norm() &&
+            (law_m_B_Am2.cwiseAbs().array() <= max_dipole_Am2_.array()).all()) {
+          window_.m_B_Am2 = law_m_B_Am2;
+          window_.law_pulse = true;
+        }
+      }
       if (window_.phase == CoilPhase::kPulse) out.m_B_Am2 = window_.m_B_Am2;
       break;
     default:

@@ -15,6 +15,10 @@ struct CoilRequest {
   double quiet_s = 0.0;        // [s] coils off before the pulse, >= 0
   double pulse_s = 0.0;        // [s] dipole on, > 0
   double quiet_after_s = 0.0;  // [s] coils off after it, >= 0
+  /// [A m²] > 0: hold the law's own dipole of the pulse's first step instead, when its component
+  /// along m_B_Am2 is at least this and at least half its size (seed S0 reusing an unloading
+  /// pulse: the unloading goes on through the window); 0: always m_B_Am2
+  double law_pulse_min_Am2 = 0.0;
 };
 
 enum class CoilPhase { kIdle, kQuiet, kPulse, kQuietAfter, kDone, kRefused };
@@ -25,6 +29,7 @@ struct CoilWindowReport {
   CoilPhase phase = CoilPhase::kIdle;
   std::int64_t t0_ns = 0, t1_ns = 0, pulse_end_ns = 0, t2_ns = 0;  // [ns]
   Eigen::Vector3d m_B_Am2 = Eigen::Vector3d::Zero();  // [A m²] as commanded (after the coil limits)
+  bool law_pulse = false;  // m_B_Am2 is the law's, taken at t1
 };
 
 struct CoilArbiterOutput {
@@ -54,6 +59,8 @@ class CoilArbiter {
   Eigen::Vector3d max_dipole_Am2_;
   CoilWindowReport window_;
   std::uint32_t last_served_ = 0;
+  double law_pulse_min_Am2_ = 0.0;  // of the window running
+  bool pulse_started_ = false;      // its dipole is fixed
 };
 
 }  // namespace flatsat::unloading_controller

@@ -18,8 +18,8 @@ namespace {
 
 std::optional<CoilRequest> toRequest(const msg::CoilRequest& m) {
   if (m.request_id() == 0) return std::nullopt;
-  return CoilRequest{m.request_id(), bus::vec3(m.m_body_Am2()), m.quiet_s(), m.pulse_s(),
-                     m.quiet_after_s()};
+  return CoilRequest{m.request_id(),    bus::vec3(m.m_body_Am2()), m.quiet_s(), m.pulse_s(),
+                     m.quiet_after_s(), m.law_pulse_min_Am2()};
 }
 
 msg::CoilWindow toMessage(const CoilWindowReport& r) {
@@ -35,6 +35,7 @@ msg::CoilWindow toMessage(const CoilWindowReport& r) {
   m.pulse_end_ns(r.pulse_end_ns);
   m.t2_ns(r.t2_ns);
   bus::put(m.m_body_Am2(), r.m_B_Am2);
+  m.law_pulse(r.law_pulse);
   return m;
 }
 
@@ -125,7 +126,6 @@ UnloadingControllerNode::UnloadingControllerNode(bus::Bus& bus, bus::NodeOptions
   if (params.flaps) {
     flaps_ = params.flaps;
     if (flaps_->atmosphere) atmosphere_.emplace(*flaps_->atmosphere);
-    flap_cmd_ = &addOutput(bus::topics::kFlapCmd);
   }
   switch (params.field_source) {
     case FieldSource::kMagnetometer: magnetometer_ = &addInput(bus::topics::kMagnetometer); break;
@@ -210,7 +210,7 @@ void UnloadingControllerNode::step(const bus::StepContext& ctx) {
   auto window = toMessage(coils.report);
   window.header(bus::makeHeader(ctx, name()));
   coil_window_.write(window);
-  if (flap_cmd_ != nullptr) publishFlaps(ctx, in, out);
+  publishFlaps(ctx, in, out);
 }
 
 double UnloadingControllerNode::flapScale_Nm(const estimator::ReferenceVectors& reference) const {
@@ -240,7 +240,7 @@ void UnloadingControllerNode::publishFlaps(const bus::StepContext& ctx, const Ma
   bus::put(m.b_body_T(), in.b_B_T);
   m.flap_scale_Nm(in.flap_scale_Nm);
   m.header(bus::makeHeader(ctx, name()));
-  flap_cmd_->write(m);
+  flap_cmd_.write(m);
 }
 
 UnloadingControllerNodeParams readParams(const bus::Scenario& scenario, const bus::NodeArgs& args,

@@ -40,8 +40,7 @@ struct UnloadingControllerNodeParams {
   /// Onboard orbit and field model; set for kModelAttitude and when spin capture
   /// takes the field's turn from it.
   std::optional<estimator::ReferenceModelParams> onboard;
-  /// Set when spacecraft.flaps is fitted: flatsat/flap_cmd is published every step
-  /// (neutral without modes.aero), and modes.aero needs onboard for K.
+  /// Set when spacecraft.flaps is fitted (modes.aero needs it and onboard for K).
   std::optional<FlapKnowledge> flaps;
 };
 
@@ -78,6 +77,8 @@ class UnloadingControllerNode final : public bus::Component {
   bus::InputOf<bus::topics::kAttitudeEstimate>* attitude_ = nullptr;     // kModelAttitude
   bus::WriterOf<bus::topics::kDipoleCmd>& command_ = addOutput(bus::topics::kDipoleCmd);
   bus::WriterOf<bus::topics::kCoilWindow>& coil_window_ = addOutput(bus::topics::kCoilWindow);
+  /// Every step, as every topic of a producer: neutral angles (split 255) without flaps or `aero:`.
+  bus::WriterOf<bus::topics::kFlapCmd>& flap_cmd_ = addOutput(bus::topics::kFlapCmd);
   std::mutex mode_mutex_;
   std::optional<MagneticMode> requested_mode_;  // received, entered at the next step
   std::vector<std::uint64_t> mode_command_ids_;  // of the commands behind requested_mode_
@@ -89,7 +90,6 @@ class UnloadingControllerNode final : public bus::Component {
   std::optional<estimator::ReferenceModel> onboard_;
   std::optional<FlapKnowledge> flaps_;
   std::optional<sim::Atmosphere> atmosphere_;
-  bus::WriterOf<bus::topics::kFlapCmd>* flap_cmd_ = nullptr;  // flaps fitted
 };
 
 /// components.<name>: the unloading keys (gain_per_s, h_*), `mode:`, a

@@ -4,10 +4,14 @@
 // wheel momentum; the unloading law runs on that estimate.
 #include <catch2/catch.hpp>
 
+#include <cmath>
+#include <filesystem>
+#include <map>
 #include <sstream>
 
 #include "tests/support/Rig.hpp"
 
+namespace fs = std::filesystem;
 using namespace flatsat;
 
 namespace {
@@ -54,4 +58,43 @@ TEST_CASE("S0 accuracy at the best setting: field under 5 %, roll under 2 deg",
   CHECK(failed == 0);
   CHECK(field_rms < 5.0);
   CHECK(alpha_rms < 2.0);
+}
+
+TEST_CASE("S0 takes the unloading pulse in progress as its window when the law drives along x",
+          "[system][slow][s0]") {
+  // s0.law_pulse_min_Am2: when the cross-product law (on the S0 estimate) drives at least
+  // 50 A m² along x, mostly along x, the coil owner holds the law's own dipole as the pulse,
+  // and the estimator solves the window with that dipole (any direction with |m̂x| >= 0.5).
+  const std::string out = test::freshDir("s0-law");
+  const auto run =
+      test::runScenario(kS0, out, "--composed --set components.estimator.s0.law_pulse_min_Am2=50", true);
+  const auto& s = run.summary;
+  INFO(s.dump(2));
+  REQUIRE(test::runCommand(test::kFlatsat + " export " + out + "/recording.sqlite --json -o " + out +
+                           "/export -t coil_window")
+              .exit_code == 0);
+  std::map<std::uint64_t, bool> law_pulse;  // request id -> its pulse was the law's
+  std::map<std::uint64_t, double> off_x;    // request id -> |m| − |m_x| of the pulse
+  for (const auto& row : test::exportedRows(fs::path(out) / "export", "coil_window")) {
+    if (row["phase"] != "COIL_DONE") continue;
+    const std::uint64_t id = row["request_id"];
+    law_pulse[id] = row["law_pulse"].get<bool>();
+    const auto& m = row["m_body_Am2"];
+    off_x[id] = std::hypot(m[0].get<double>(), m[1].get<double>(), m[2].get<double>()) - std::abs(m[0].get<double>());
+  }
+  int from_law = 0, across_x = 0;
+  for (const auto& [id, law] : law_pulse) {
+    from_law += law ? 1 : 0;
+    across_x += off_x[id] > 1.0 ? 1 : 0;
+  }
+  INFO(law_pulse.size() << " windows, " << from_law << " on the law's pulse, " << across_x << " with a dipole off x");
+  CHECK(from_law >= 10);
+  CHECK(across_x == from_law);  // those pulses were the law's, not a ±Mx of the estimator's
+  CHECK(s["s0_windows_failed"].get<int>() == 0);
+  CHECK(s["s0_windows_solved"].get<int>() >= static_cast<int>(law_pulse.size()) - 1);
+  // The same bounds as the ±Mx closed loop above.
+  CHECK(s["wheel_momentum_fraction_max"].get<double>() < 0.2);
+  CHECK(s["field_error_pct_rms"].get<double>() < 10.0);
+  CHECK(s["alpha_error_deg_rms"].get<double>() < 5.0);
+  fs::remove_all(out);
 }

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 // One owner for the coils: requested windows run whole and never overlap each
 // other or the unloading law.
+#include <vector>
+
 #include <catch2/catch.hpp>
 
 #include "components/unloading_controller/CoilArbiter.hpp"
@@ -77,4 +79,34 @@ TEST_CASE("coil arbiter: a dipole beyond a coil's limit is refused, not clipped"
   CHECK_FALSE(out.window_active);
   CHECK(out.m_B_Am2 == Eigen::Vector3d::Ones());
   CHECK_THROWS_AS(CoilArbiter(Eigen::Vector3d(1.0, 0.0, 1.0)), std::invalid_argument);
+}
+
+TEST_CASE("coil arbiter: an unloading pulse in progress is held as the window's pulse", "[coils]") {
+  CoilArbiter arbiter(Eigen::Vector3d::Constant(150.0));
+  // Seed S0 asks for +100 A m² on x, or the law's own dipole when it gives >= 40 along x.
+  const CoilRequest request{4, {100.0, 0.0, 0.0}, 2.0, 3.0, 2.0, 40.0};
+  std::vector<Eigen::Vector3d> pulse;
+  for (std::int64_t t = 0; t < 7; ++t) {
+    // The law keeps changing (it follows H and B); the pulse holds its value at t1 = 2 s.
+    const Eigen::Vector3d law(-60.0 - static_cast<double>(t), 20.0, 5.0);
+    const auto out = arbiter.step(request, law, t * kSecond);
+    CHECK(out.window_active);
+    if (out.report.phase == CoilPhase::kPulse) pulse.push_back(out.m_B_Am2);
+    if (out.report.phase != CoilPhase::kPulse) CHECK(out.m_B_Am2.isZero(0.0));
+  }
+  REQUIRE(pulse.size() == 3);
+  for (const auto& m : pulse) CHECK(m == Eigen::Vector3d(-62.0, 20.0, 5.0));
+  const auto done = arbiter.step(std::nullopt, Eigen::Vector3d::Zero(), 7 * kSecond);
+  CHECK(done.report.phase == CoilPhase::kDone);
+  CHECK(done.report.law_pulse);
+  CHECK(done.report.m_B_Am2 == Eigen::Vector3d(-62.0, 20.0, 5.0));  // what the estimator divides by
+
+  // Too little along x, or mostly across it: the requested pulse instead.
+  for (const Eigen::Vector3d& law : {Eigen::Vector3d(30.0, 0.0, 0.0), Eigen::Vector3d(50.0, 120.0, 0.0)}) {
+    CoilArbiter other(Eigen::Vector3d::Constant(150.0));
+    for (std::int64_t t = 0; t < 8; ++t) other.step(request, law, t * kSecond);
+    const auto report = other.step(std::nullopt, law, 8 * kSecond).report;
+    CHECK_FALSE(report.law_pulse);
+    CHECK(report.m_B_Am2 == request.m_B_Am2);
+  }
 }
