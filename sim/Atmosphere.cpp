@@ -4,6 +4,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
 #include <numbers>
 #include <stdexcept>
 
@@ -58,6 +61,29 @@ std::vector<HarrisPriesterRow> harrisPriesterMeanSolarActivity() {
   rows.reserve(kMeanActivityTable.size());
   for (const auto& row : kMeanActivityTable) {
     rows.push_back({row[0] * 1e3, row[1] * kGramPerKm3ToKgPerM3, row[2] * kGramPerKm3ToKgPerM3});
+  }
+  return rows;
+}
+
+std::vector<HarrisPriesterRow> readHarrisPriesterTable(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error(path + ": cannot be read");
+  std::vector<HarrisPriesterRow> rows;
+  std::string line;
+  for (int number = 1; std::getline(in, line); ++number) {
+    if (const auto hash = line.find('#'); hash != std::string::npos) line.erase(hash);
+    std::istringstream fields(line);
+    double height_km = 0.0, min_g_km3 = 0.0, max_g_km3 = 0.0;
+    std::string extra;
+    if (!(fields >> height_km)) {
+      if (line.find_first_not_of(" \t\r") == std::string::npos) continue;  // blank or comment
+      throw std::runtime_error(path + ":" + std::to_string(number) + ": '" + line + "' is not a number");
+    }
+    if (!(fields >> min_g_km3 >> max_g_km3) || (fields >> extra)) {
+      throw std::runtime_error(path + ":" + std::to_string(number) +
+                               ": needs three numbers: height [km], antapex and apex density [g/km^3]");
+    }
+    rows.push_back({height_km * 1e3, min_g_km3 * kGramPerKm3ToKgPerM3, max_g_km3 * kGramPerKm3ToKgPerM3});
   }
   return rows;
 }

@@ -21,6 +21,14 @@ struct HarrisPriesterRow {
 /// solar activity, 100–1000 km (converted from g/km³).
 std::vector<HarrisPriesterRow> harrisPriesterMeanSolarActivity();
 
+/// A Harris–Priester table from a text file, for the solar activity it was published for
+/// (the density table is the model's solar-activity input: M&G §3.5.2; Orekit's
+/// HarrisPriester takes it the same way). One row per line: height [km], antapex and apex
+/// densities [g/km³], as M&G Table 3.8 and the GTDS tables print them; `#` starts a comment.
+/// @throws std::runtime_error "FILE:LINE: reason" for an unreadable file or a malformed row
+///         (the table's own checks are AtmosphereParams::validate()).
+std::vector<HarrisPriesterRow> readHarrisPriesterTable(const std::string& path);
+
 enum class DensityModel {
   kHarrisPriester,  // diurnal bulge, table for one solar activity (M&G §3.5.2)
   kExponential,     // static, Vallado Table 8-4

@@ -128,11 +128,21 @@ void readField(const bus::Scenario& scenario, bus::ParamReader& environment, Dyn
 }
 
 /// environment.atmosphere: constant (density_kg_m3) or a density model.
-void readAtmosphere(bus::ParamReader& environment, DynamicsParams& p) {
+void readAtmosphere(const bus::Scenario& scenario, bus::ParamReader& environment, DynamicsParams& p) {
   std::string model = "constant";
   environment.read("atmosphere", model);
   AtmosphereParams atmosphere;
   environment.read("bulge_exponent", atmosphere.bulge_exponent, "-");
+  // The solar activity: the table published for it (default: mean activity, M&G Table 3.8).
+  std::string table_file;
+  environment.read("harris_priester_table", table_file);
+  if (!table_file.empty()) {
+    try {
+      atmosphere.harris_priester_table = readHarrisPriesterTable(findDataFile(scenario, table_file));
+    } catch (const std::exception& e) {
+      environment.problem("harris_priester_table", e.what());
+    }
+  }
   environment.read("density_kg_m3", p.density_kg_m3, "kg/m^3");
   if (model == "harris_priester" || model == "exponential") {
     atmosphere.model = model == "exponential" ? DensityModel::kExponential : DensityModel::kHarrisPriester;
@@ -142,8 +152,8 @@ void readAtmosphere(bus::ParamReader& environment, DynamicsParams& p) {
   } else if (model != "constant") {
     environment.problem("atmosphere", "'" + model + "' is not constant, harris_priester or exponential");
   }
-  if (model != "harris_priester" && environment.has("bulge_exponent")) {
-    environment.problem("bulge_exponent", "only with atmosphere: harris_priester");
+  for (const char* key : {"bulge_exponent", "harris_priester_table"}) {
+    if (model != "harris_priester" && environment.has(key)) environment.problem(key, "only with atmosphere: harris_priester");
   }
   const OrbitTrackParams& track = p.orbit_track;
   if (track.propagator == OrbitPropagation::kNumerical && track.forces.drag && !p.atmosphere) {
@@ -153,7 +163,7 @@ void readAtmosphere(bus::ParamReader& environment, DynamicsParams& p) {
 
 void readEnvironment(const bus::Scenario& scenario, bus::ParamReader environment, DynamicsParams& p) {
   readField(scenario, environment, p);
-  readAtmosphere(environment, p);
+  readAtmosphere(scenario, environment, p);
   environment.read("gravity_gradient", p.gravity_gradient);
   environment.read("disturbance_torque_body_Nm", p.disturbance_torque_B_Nm, "N m");
   environment.finish();

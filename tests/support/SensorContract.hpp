@@ -21,6 +21,8 @@ struct SensorContract {
   double tolerance = 0.0;        ///< [field unit] per component, |measured - true| when valid
   double min_norm = 0.0;         ///< [field unit] physical range of |measured| when valid
   double max_norm = 0.0;
+  /// q and −q are the same attitude: compared with whichever sign is nearer the truth
+  bool quaternion = false;
 };
 
 /// What a sample stream must show: who sends it and how often.
@@ -63,8 +65,15 @@ inline std::vector<std::string> contractBreaches(const std::vector<nlohmann::jso
     }
     double norm2 = 0.0;
     const auto& measured = s[contract.field];
+    const auto& true_value = it->second[contract.field];
+    double sign = 1.0;
+    if (contract.quaternion) {
+      double dot = 0.0;
+      for (std::size_t i = 0; i < measured.size(); ++i) dot += measured[i].get<double>() * true_value[i].get<double>();
+      sign = dot < 0.0 ? -1.0 : 1.0;
+    }
     for (std::size_t i = 0; i < measured.size(); ++i) {
-      const double m = measured[i].get<double>(), t = it->second[contract.field][i].get<double>();
+      const double m = measured[i].get<double>(), t = sign * true_value[i].get<double>();
       if (!std::isfinite(m)) breach(s, contract.field + " not finite");
       if (std::abs(m - t) > contract.tolerance) {
         breach(s, contract.field + "[" + std::to_string(i) + "] = " + std::to_string(m) + ", truth " +
@@ -98,6 +107,9 @@ inline const std::map<std::string, SensorContract>& sensorContracts() {
       {"gyro", {"w_body_rad_s", 1e-4, 0.0, 0.2}},
       // Noise 0.01 rad/s, quantum 0.005 rad/s; wheels below 6000 rpm.
       {"wheel_tach", {"wheel_speed_rad_s", 0.1, 0.0, 2.0 * 629.0}},
+      // A unit quaternion; noise 4 arcsec across the boresight, 30 arcsec about it (a
+      // quaternion component moves by half the angle: 7e-5 at 30 arcsec).
+      {"star_tracker", {"q_inertial_body", 5e-4, 1.0 - 1e-9, 1.0 + 1e-9, true}},
   };
   return contracts;
 }

@@ -1,5 +1,9 @@
 // SPDX-License-Identifier: Apache-2.0
+#include <unistd.h>
+
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <numbers>
 #include <stdexcept>
 #include <string>
@@ -182,4 +186,54 @@ TEST_CASE("AtmosphereParams::validate lists every violation", "[sim][atmosphere]
   AtmosphereParams tiny;
   tiny.harris_priester_table.resize(1);
   CHECK(anyStartsWith(tiny.validate(), "harris_priester_table:"));
+}
+
+TEST_CASE("Harris-Priester tables from a file: the shipped one is M&G Table 3.8, another flux level scales",
+          "[sim][atmosphere][orbit]") {
+  namespace fs = std::filesystem;
+  const fs::path shipped = fs::path(FLATSAT_DATA_DIR) / "atmosphere" / "harris_priester_mean.txt";
+  const auto table = readHarrisPriesterTable(shipped.string());
+  const auto builtin = harrisPriesterMeanSolarActivity();
+  REQUIRE(table.size() == builtin.size());
+  for (std::size_t i = 0; i < table.size(); ++i) {
+    CHECK(table[i].height_m == builtin[i].height_m);
+    CHECK(table[i].density_min_kg_m3 == Approx(builtin[i].density_min_kg_m3).epsilon(1e-15));
+    CHECK(table[i].density_max_kg_m3 == Approx(builtin[i].density_max_kg_m3).epsilon(1e-15));
+  }
+
+  // A table for a higher flux with every density k times the mean one: the layers' scale
+  // heights are unchanged, so the model's density is k times as large everywhere.
+  const fs::path dir = fs::temp_directory_path() / ("flatsat-hp-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const double k = 2.7;
+  {
+    std::ofstream out(dir / "scaled.txt");
+    out << "# test table\n\n";
+    for (const auto& row : builtin) {
+      out << row.height_m / 1e3 << " " << k * row.density_min_kg_m3 / 1e-12 << " "
+          << k * row.density_max_kg_m3 / 1e-12 << "  # g/km^3\n";
+    }
+  }
+  AtmosphereParams scaled;
+  scaled.harris_priester_table = readHarrisPriesterTable((dir / "scaled.txt").string());
+  const Atmosphere mean{AtmosphereParams{}};
+  const Atmosphere high{scaled};
+  for (const double h : {150e3, 333e3, 400e3, 612e3, 987e3}) {
+    for (const double ra : {0.0, 1.0, 3.0}) {
+      const Eigen::Vector3d r = equatorial(ra, h);
+      CHECK(high.density_kg_m3(r, kSunAtEquinox) == Approx(k * mean.density_kg_m3(r, kSunAtEquinox)).epsilon(1e-12));
+    }
+  }
+
+  // Bad rows are named by file and line.
+  {
+    std::ofstream(dir / "short.txt") << "100 497400 497400\n120 24900\n";
+    std::ofstream(dir / "words.txt") << "# heading\nheight min max\n";
+  }
+  CHECK_THROWS_WITH(readHarrisPriesterTable((dir / "short.txt").string()),
+                    Catch::Contains("short.txt:2: needs three numbers"));
+  CHECK_THROWS_WITH(readHarrisPriesterTable((dir / "words.txt").string()),
+                    Catch::Contains("words.txt:2: 'height min max' is not a number"));
+  CHECK_THROWS_WITH(readHarrisPriesterTable((dir / "missing.txt").string()), Catch::Contains("cannot be read"));
+  fs::remove_all(dir);
 }
