@@ -6,7 +6,7 @@
 #include <numbers>
 #include <stdexcept>
 
-#include <Eigen/Geometry>
+#include <Eigen/Dense>
 
 #include "components/common/Validation.hpp"
 
@@ -21,6 +21,25 @@ std::vector<std::string> SunSensorParams::validate() const {
           "fov_half_angle_rad", "must be in (0, pi/2)");
   require(errors, min_illumination >= 0.0 && min_illumination <= 1.0, "min_illumination",
           "must be in [0, 1]");
+  if (kind != SunSensorKind::kCoarseCosine) return errors;
+  const auto& cells = cell_normals_B;
+  require(errors, cells.size() >= 2 && cells.size() <= static_cast<std::size_t>(kMaxSunCells), "cell_normals_body",
+          "needs 2.." + std::to_string(kMaxSunCells) + " cells");
+  bool paired = true;
+  Eigen::Matrix3d spread = Eigen::Matrix3d::Zero();
+  for (const auto& n : cells) {
+    requireUnit(errors, "cell_normals_body", n);
+    paired = paired && std::any_of(cells.begin(), cells.end(), [&](const Eigen::Vector3d& m) { return (m + n).norm() < 1e-6; });
+    spread += n * n.transpose();
+  }
+  require(errors, paired, "cell_normals_body", "every cell needs one facing the opposite way (pairs)");
+  require(errors, Eigen::FullPivLU<Eigen::Matrix3d>(spread).rank() == 3, "cell_normals_body",
+          "the cells' normals must span three dimensions");
+  requireNonNegative(errors, "cell_noise", cell_noise);
+  requirePositive(errors, "min_output", min_output);
+  if (albedo) {
+    require(errors, albedo->albedo >= 0.0 && albedo->albedo <= 1.0, "albedo", "must be in [0, 1]");
+  }
   return errors;
 }
 
@@ -37,11 +56,43 @@ SunSensorModel::SunSensorModel(const Params& params)
   params_.boresight_B.normalize();
   t1_B_ = params_.boresight_B.unitOrthogonal();
   t2_B_ = params_.boresight_B.cross(t1_B_);
+  if (params_.kind == SunSensorKind::kCoarseCosine) {
+    Eigen::MatrixXd N(params_.cell_normals_B.size(), 3);
+    for (std::size_t i = 0; i < params_.cell_normals_B.size(); ++i) N.row(static_cast<Eigen::Index>(i)) = params_.cell_normals_B[i].transpose();
+    cell_pinv_ = (N.transpose() * N).inverse() * N.transpose();
+  }
 }
 
 void SunSensorModel::reset() { noise_.reset(); }
 
+SunSensorOutput SunSensorModel::coarse(const Input& in) {
+  Output out;
+  const auto n = static_cast<int>(params_.cell_normals_B.size());
+  out.cell_count = n;
+  const double norm = in.sun_B_unit.norm();
+  const Eigen::Vector3d s = norm > 0.0 ? Eigen::Vector3d(in.sun_B_unit / norm) : Eigen::Vector3d::Zero();
+  // The Earth stays lit while the spacecraft is in its shadow: albedo at the 1 AU flux
+  // (the Sun's distance changes it by ±3.4 % over the year).
+  const bool albedo = params_.albedo && norm > 0.0 && in.r_B_m.norm() > 0.0;
+  Eigen::VectorXd y(n);
+  for (int i = 0; i < n; ++i) {
+    const Eigen::Vector3d& cell = params_.cell_normals_B[static_cast<std::size_t>(i)];
+    // Drawn for every cell on every call: the sequence does not depend on the geometry.
+    const double noise = noise_.sample(params_.cell_noise);
+    double value = in.flux_ratio * std::max(0.0, cell.dot(s));
+    if (albedo) value += sim::albedoIrradiance(in.r_B_m, s, cell, *params_.albedo);
+    y(i) = value + noise;
+    out.cell_output[static_cast<std::size_t>(i)] = y(i);
+  }
+  const Eigen::Vector3d half = cell_pinv_ * y;  // f s / 2 for opposite pairs (see the header)
+  if (!(2.0 * half.norm() >= params_.min_output)) return out;
+  out.sun_B_unit = half.normalized();
+  out.valid = true;
+  return out;
+}
+
 SunSensorOutput SunSensorModel::step(const Input& in, std::int64_t /*t_ns*/) {
+  if (params_.kind == SunSensorKind::kCoarseCosine) return coarse(in);
   // Drawn on every call so the noise sequence does not depend on eclipses or the FOV.
   const Eigen::Vector2d angle_noise_rad = noise_.vector<2>(params_.noise_rad);
 

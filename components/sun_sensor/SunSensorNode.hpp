@@ -4,17 +4,21 @@
 #include "bus/NodeMain.hpp"
 #include "components/common/EmulatorNode.hpp"
 #include "components/sun_sensor/SunSensorModel.hpp"
+#include "sim/PanelModel.hpp"
 
 namespace flatsat::sun_sensor {
 
 inline SunSensorInput toInput(const msg::TruthState& truth) {
-  return {bus::vec3(truth.sun_body_unit()), truth.illumination()};
+  return {bus::vec3(truth.sun_body_unit()), truth.illumination(), truth.solar_flux_W_m2() / sim::kSolarFlux1Au_W_m2,
+          bus::quat(truth.q_inertial_body()).conjugate() * bus::vec3(truth.r_inertial_m())};
 }
 
 inline msg::SunSensorReading toMessage(const SunSensorOutput& out) {
   msg::SunSensorReading m;
   bus::put(m.sun_body_unit(), out.sun_B_unit);
   m.valid(out.valid);
+  m.cell_count(static_cast<std::uint32_t>(out.cell_count));
+  for (int i = 0; i < out.cell_count; ++i) m.cell_output()[static_cast<std::size_t>(i)] = out.cell_output[static_cast<std::size_t>(i)];
   return m;
 }
 

@@ -4,6 +4,9 @@
 // the magnetometer bridge's samples against the same contract.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <cmath>
+
 #include <filesystem>
 
 #include "tests/support/Rig.hpp"
@@ -76,6 +79,44 @@ TEST_CASE("the star tracker's samples keep their contract", "[system][conformanc
   CHECK_FALSE(test::contractBreaches(swapped, truth, test::sensorContracts().at("star_tracker"),
                                      {"star_tracker", 0.1, 10.0})
                   .empty());
+  fs::remove_all(out);
+}
+
+TEST_CASE("a coarse cosine sun sensor over the bus: each cell gives the cosine of the true Sun",
+          "[system][conformance]") {
+  // The default rig with the six-cell cube instead of the fine head, no albedo, over DDS.
+  test::exportTestDomain();
+  const std::string out = test::freshDir("conformance-css");
+  const auto run = test::runCommand(test::kFlatsat + " run " + std::string(FLATSAT_SCENARIO_DIR) +
+                                    "/default.yaml -q --no-plots --out " + out +
+                                    " --set duration_orbits=null --set duration_s=120" +
+                                    " --set components.sun_sensor.type=coarse_cosine");
+  INFO(run.output);
+  REQUIRE(run.exit_code == 0);
+  REQUIRE(test::runCommand(test::kFlatsat + " export " + out + "/recording.sqlite --json -o " + out +
+                           "/export -t truth -t sun_sensor")
+              .exit_code == 0);
+  std::map<std::uint64_t, nlohmann::json> truth;
+  for (auto& row : test::exportedRows(fs::path(out) / "export", "truth")) truth[row["header"]["step"]] = row;
+  const auto samples = test::exportedRows(fs::path(out) / "export", "sun_sensor");
+  REQUIRE(samples.size() == 1201);
+  constexpr double kFiveSigma = 5 * 0.005;  // the default cell noise
+  const double normals[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+  int off = 0, valid = 0;
+  for (const auto& s : samples) {
+    REQUIRE(s["cell_count"] == 6);
+    const auto& t = truth.at(s["header"]["step"]);
+    const double flux = t["solar_flux_W_m2"].get<double>() / 1361.0;
+    for (int i = 0; i < 6; ++i) {
+      double cosine = 0.0;
+      for (int k = 0; k < 3; ++k) cosine += normals[i][k] * t["sun_body_unit"][k].get<double>();
+      const double expected = flux * std::max(0.0, cosine);
+      if (std::abs(s["cell_output"][i].get<double>() - expected) > kFiveSigma) ++off;
+    }
+    valid += s["valid"].get<bool>() ? 1 : 0;
+  }
+  CHECK(off == 0);
+  CHECK(valid == 1201);  // the default orbit starts in sunlight
   fs::remove_all(out);
 }
 
