@@ -6,6 +6,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <string>
+#include <vector>
 
 #include <filesystem>
 
@@ -15,23 +18,42 @@
 namespace fs = std::filesystem;
 using namespace flatsat;
 
-TEST_CASE("every emulated sensor topic keeps its contract", "[system][conformance]") {
+namespace {
+
+/// Runs SCENARIO (lockstep, every component its own process) for 120 s with `extra`
+/// settings, exports `topics` and the truth; returns the run directory.
+std::string runAndExport(const std::string& tag, const std::string& scenario, const std::string& extra,
+                         const std::vector<std::string>& topics) {
   test::exportTestDomain();
-  const std::string out = test::freshDir("conformance");
-  const auto run = test::runCommand(test::kFlatsat + " run " + std::string(FLATSAT_SCENARIO_DIR) +
-                                    "/default.yaml -q --no-plots --out " + out +
-                                    " --set duration_orbits=null --set duration_s=120");
+  const std::string out = test::freshDir(tag);
+  const auto run = test::runCommand(test::kFlatsat + " run " + std::string(FLATSAT_SCENARIO_DIR) + "/" + scenario +
+                                    " -q --no-plots --out " + out +
+                                    " --set duration_orbits=null --set duration_s=120 " + extra);
   INFO(run.output);
   REQUIRE(run.exit_code == 0);
-  std::string topics = " -t truth";
-  for (const auto& [topic, contract] : test::sensorContracts()) {
-    if (topic != "star_tracker") topics += " -t " + topic;
-  }
-  REQUIRE(test::runCommand(test::kFlatsat + " export " + out + "/recording.sqlite --json -o " + out +
-                           "/export" + topics)
+  std::string wanted = " -t truth";
+  for (const auto& topic : topics) wanted += " -t " + topic;
+  REQUIRE(test::runCommand(test::kFlatsat + " export " + out + "/recording.sqlite --json -o " + out + "/export" +
+                           wanted)
               .exit_code == 0);
+  return out;
+}
+
+std::map<std::uint64_t, nlohmann::json> truthByStep(const std::string& out) {
   std::map<std::uint64_t, nlohmann::json> truth;
   for (auto& row : test::exportedRows(fs::path(out) / "export", "truth")) truth[row["header"]["step"]] = row;
+  return truth;
+}
+
+}  // namespace
+
+TEST_CASE("every emulated sensor topic keeps its contract", "[system][conformance]") {
+  std::vector<std::string> topics;
+  for (const auto& [topic, contract] : test::sensorContracts()) {
+    if (topic != "star_tracker") topics.push_back(topic);
+  }
+  const std::string out = runAndExport("conformance", "default.yaml", "", topics);
+  const auto truth = truthByStep(out);
   for (const auto& [topic, contract] : test::sensorContracts()) {
     if (topic == "star_tracker") continue;  // the default rig has none: below
     const auto samples = test::exportedRows(fs::path(out) / "export", topic);
@@ -48,18 +70,8 @@ TEST_CASE("the star tracker's samples keep their contract", "[system][conformanc
   // mekf_star_tracker.yaml: the head's 4 arcsec across the boresight, 30 arcsec about it,
   // no solution within 35 deg of the Sun, 20 deg of the limb or above 2 deg/s (not valid,
   // so not judged on value, but still on header, time and rate).
-  test::exportTestDomain();
-  const std::string out = test::freshDir("conformance-st");
-  const auto run = test::runCommand(test::kFlatsat + " run " + std::string(FLATSAT_SCENARIO_DIR) +
-                                    "/mekf_star_tracker.yaml -q --no-plots --out " + out +
-                                    " --set duration_orbits=null --set duration_s=120");
-  INFO(run.output);
-  REQUIRE(run.exit_code == 0);
-  REQUIRE(test::runCommand(test::kFlatsat + " export " + out + "/recording.sqlite --json -o " + out +
-                           "/export -t truth -t star_tracker")
-              .exit_code == 0);
-  std::map<std::uint64_t, nlohmann::json> truth;
-  for (auto& row : test::exportedRows(fs::path(out) / "export", "truth")) truth[row["header"]["step"]] = row;
+  const std::string out = runAndExport("conformance-st", "mekf_star_tracker.yaml", "", {"star_tracker"});
+  const auto truth = truthByStep(out);
   const auto samples = test::exportedRows(fs::path(out) / "export", "star_tracker");
   CHECK(samples.size() == 1201);
   int valid = 0;
@@ -85,19 +97,9 @@ TEST_CASE("the star tracker's samples keep their contract", "[system][conformanc
 TEST_CASE("a coarse cosine sun sensor over the bus: each cell gives the cosine of the true Sun",
           "[system][conformance]") {
   // The default rig with the six-cell cube instead of the fine head, no albedo, over DDS.
-  test::exportTestDomain();
-  const std::string out = test::freshDir("conformance-css");
-  const auto run = test::runCommand(test::kFlatsat + " run " + std::string(FLATSAT_SCENARIO_DIR) +
-                                    "/default.yaml -q --no-plots --out " + out +
-                                    " --set duration_orbits=null --set duration_s=120" +
-                                    " --set components.sun_sensor.type=coarse_cosine");
-  INFO(run.output);
-  REQUIRE(run.exit_code == 0);
-  REQUIRE(test::runCommand(test::kFlatsat + " export " + out + "/recording.sqlite --json -o " + out +
-                           "/export -t truth -t sun_sensor")
-              .exit_code == 0);
-  std::map<std::uint64_t, nlohmann::json> truth;
-  for (auto& row : test::exportedRows(fs::path(out) / "export", "truth")) truth[row["header"]["step"]] = row;
+  const std::string out =
+      runAndExport("conformance-css", "default.yaml", "--set components.sun_sensor.type=coarse_cosine", {"sun_sensor"});
+  const auto truth = truthByStep(out);
   const auto samples = test::exportedRows(fs::path(out) / "export", "sun_sensor");
   REQUIRE(samples.size() == 1201);
   constexpr double kFiveSigma = 5 * 0.005;  // the default cell noise
