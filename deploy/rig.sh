@@ -23,8 +23,9 @@ packages=(
   iproute2 tcpdump procps
   python3 gnuplot-nox
 )
-# Only for `test`: the compose rig's engine, base image and network filter.
-test_packages=(docker.io docker-compose debootstrap nftables)
+# Only for `test`: the compose rig's engine, base image and network filter, and the
+# browser the live web view is tested in.
+test_packages=(docker.io docker-compose debootstrap nftables chromium)
 # Only for `fuzz`: clang with libFuzzer and the sanitizer runtimes.
 fuzz_packages=(clang libclang-rt-14-dev)
 

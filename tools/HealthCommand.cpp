@@ -12,13 +12,12 @@
 #include <string>
 
 #include "bus/Stamp.hpp"
+#include "tools/HealthTable.hpp"
 #include "tools/ToolBus.hpp"
 
 namespace flatsat::tools {
 
 namespace {
-
-using HealthDef = std::remove_cvref_t<decltype(bus::topics::kHealth)>;
 
 struct HealthOptions {
   bool once = false;
@@ -27,55 +26,6 @@ struct HealthOptions {
   int domain = -1;
   std::string component;  // --component: that one only, its state as the exit code
 };
-
-struct Entry {
-  msg::Health health;
-  Guid writer;
-};
-
-/// Deadline misses of a paced rig, when the Health type carries them.
-template <class H>
-std::uint64_t overruns(const H& h) {
-  if constexpr (requires { h.overruns(); }) {
-    return h.overruns();
-  } else {
-    return 0;
-  }
-}
-template <class H>
-std::uint64_t staleInputs(const H& h) {
-  if constexpr (requires { h.stale_inputs(); }) {
-    return h.stale_inputs();
-  } else {
-    return 0;
-  }
-}
-
-double ageSeconds(const msg::Health& h) {
-  const auto now_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(
-                          std::chrono::system_clock::now().time_since_epoch())
-                          .count();
-  return static_cast<double>(now_ns - static_cast<std::int64_t>(h.wall_time_ns())) * 1e-9;
-}
-
-nlohmann::ordered_json table(const std::map<std::string, Entry>& entries, const ToolBus& tool_bus) {
-  const auto participants = tool_bus.participants();
-  auto rows = nlohmann::ordered_json::array();
-  for (const auto& [name, e] : entries) {
-    const auto p = participants.find(e.writer.guidPrefix);
-    rows.push_back({{"component", name},
-                    {"state", msg::toJson(e.health.state())},
-                    {"steps_done", e.health.steps_done()},
-                    {"overruns", overruns(e.health)},
-                    {"stale_inputs", staleInputs(e.health)},
-                    {"samples_dropped", e.health.samples_dropped()},
-                    {"commands_refused", e.health.commands_refused()},
-                    {"age_s", ageSeconds(e.health)},
-                    {"alive", p != participants.end() && p->second.alive},
-                    {"message", bus::text(e.health.message())}});
-  }
-  return rows;
-}
 
 void printTable(const nlohmann::ordered_json& rows, std::uint32_t domain) {
   std::printf("%-22s %-14s %10s %9s %6s %8s %8s %8s  %s\n", "COMPONENT", "STATE", "STEPS",
@@ -99,7 +49,7 @@ void printTable(const nlohmann::ordered_json& rows, std::uint32_t domain) {
 /// One component's health as a probe (container health checks): 0 when it
 /// reported within --wait and is neither FAILED nor gone, else 1.
 int probe(const HealthOptions& o, const ToolBus& tool_bus, std::mutex& mutex,
-          const std::map<std::string, Entry>& entries) {
+          const std::map<std::string, HealthEntry>& entries) {
   const auto start = Clock::now();
   const auto reported = [&] {
     std::lock_guard lock(mutex);
@@ -111,9 +61,9 @@ int probe(const HealthOptions& o, const ToolBus& tool_bus, std::mutex& mutex,
   nlohmann::ordered_json rows;
   {
     std::lock_guard lock(mutex);
-    std::map<std::string, Entry> one;
+    std::map<std::string, HealthEntry> one;
     if (auto it = entries.find(o.component); it != entries.end()) one.insert(*it);
-    rows = table(one, tool_bus);
+    rows = healthTable(one, tool_bus);
   }
   if (o.json) std::cout << rows.dump(2) << "\n";
   else printTable(rows, tool_bus.domain());
@@ -128,14 +78,14 @@ int probe(const HealthOptions& o, const ToolBus& tool_bus, std::mutex& mutex,
 int health(const HealthOptions& o) {
   ToolBus tool_bus("health", o.domain);
   std::mutex mutex;
-  std::map<std::string, Entry> entries;  // by component (header.source)
+  std::map<std::string, HealthEntry> entries;  // by component (header.source)
   Tap<HealthDef> tap(tool_bus, bus::topics::kHealth, [&](const msg::Health& h, const Arrival& a) {
     std::lock_guard lock(mutex);
     entries[bus::text(h.header().source())] = {h, a.writer};
   });
   const auto snapshot = [&] {
     std::lock_guard lock(mutex);
-    return table(entries, tool_bus);
+    return healthTable(entries, tool_bus);
   };
 
   if (!o.component.empty()) return probe(o, tool_bus, mutex, entries);

@@ -26,6 +26,7 @@
 #include "tools/EchoCommand.hpp"
 #include "tools/ExportCommand.hpp"
 #include "tools/HealthCommand.hpp"
+#include "tools/WebCommand.hpp"
 #include "tools/HzCommand.hpp"
 #include "tools/Launcher.hpp"
 #include "tools/McCommand.hpp"
@@ -374,7 +375,7 @@ int main(int argc, char** argv) {
       tools::addHzCommand(app, tool_exit),     tools::addHealthCommand(app, tool_exit),
       tools::addExportCommand(app, tool_exit), tools::addPlotCommand(app, tool_exit),
       tools::addRecordCommand(app, tool_exit), tools::addReplayCommand(app, tool_exit),
-      tools::addCmdCommand(app, tool_exit)};
+      tools::addCmdCommand(app, tool_exit),    tools::addWebCommand(app, tool_exit)};
   for (auto* peer : tools::addBenchPeerCommands(app, tool_exit)) tool_cmds.push_back(peer);
 
   auto* clean_cmd = app.add_subcommand(

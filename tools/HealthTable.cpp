@@ -1,0 +1,59 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "tools/HealthTable.hpp"
+
+#include <chrono>
+
+#include "bus/Stamp.hpp"
+
+namespace flatsat::tools {
+
+namespace {
+
+/// Deadline misses of a paced rig, when the Health type carries them.
+template <class H>
+std::uint64_t overruns(const H& h) {
+  if constexpr (requires { h.overruns(); }) {
+    return h.overruns();
+  } else {
+    return 0;
+  }
+}
+template <class H>
+std::uint64_t staleInputs(const H& h) {
+  if constexpr (requires { h.stale_inputs(); }) {
+    return h.stale_inputs();
+  } else {
+    return 0;
+  }
+}
+
+double ageSeconds(const msg::Health& h) {
+  const auto now_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(
+                          std::chrono::system_clock::now().time_since_epoch())
+                          .count();
+  return static_cast<double>(now_ns - static_cast<std::int64_t>(h.wall_time_ns())) * 1e-9;
+}
+
+}  // namespace
+
+nlohmann::ordered_json healthTable(const std::map<std::string, HealthEntry>& entries, const ToolBus& tool_bus) {
+  const auto participants = tool_bus.participants();
+  auto rows = nlohmann::ordered_json::array();
+  for (const auto& [name, e] : entries) {
+    const auto p = participants.find(e.writer.guidPrefix);
+    rows.push_back({{"component", name},
+                    {"state", msg::toJson(e.health.state())},
+                    {"steps_done", e.health.steps_done()},
+                    {"overruns", overruns(e.health)},
+                    {"stale_inputs", staleInputs(e.health)},
+                    {"samples_dropped", e.health.samples_dropped()},
+                    {"commands_refused", e.health.commands_refused()},
+                    {"age_s", ageSeconds(e.health)},
+                    {"alive", p != participants.end() && p->second.alive},
+                    {"message", bus::text(e.health.message())}});
+  }
+  return rows;
+}
+
+
+}  // namespace flatsat::tools
