@@ -84,6 +84,7 @@ bool Component::handle(const msg::StepGrant& grant) {
     ++steps_done_;
   }
   dropInputsBefore(ctx.step);
+  reachedStep(ctx.step);
   if (std::chrono::steady_clock::now() > next_health_) {
     publishHealth(msg::ComponentState::RUNNING, steps_done_, status_);
     next_health_ += kHealthPeriod;

@@ -129,6 +129,7 @@ void Node::publishHealth(msg::ComponentState state, std::uint64_t steps_done,
           std::chrono::system_clock::now().time_since_epoch())
           .count()));
   setText(health.message(), message);
+  health.step_reached(step_reached_);
   health_.write(health);
 }
 

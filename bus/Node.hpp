@@ -200,6 +200,9 @@ class Node {
   Bus& bus_;
   NodeOptions options_;
   /// Paced: steps that went on with an input not fresh (a deadline miss).
+  /// The rig's step this node handled last (Health.step_reached): call as each step ends.
+  void reachedStep(std::uint64_t k) { step_reached_ = k; }
+  std::uint64_t step_reached_ = 0;
   std::uint64_t stale_inputs_ = 0;
   /// Paced: grants skipped because the node fell behind the wall clock.
   std::uint64_t overruns_ = 0;

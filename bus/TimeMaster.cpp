@@ -154,6 +154,7 @@ void TimeMaster::endStep(std::uint64_t k) {
   }
   advance(context(k));
   dropInputsBefore(k);
+  reachedStep(k);
   if (std::chrono::steady_clock::now() > next_health_) {  // heartbeat: counts stay current
     publishHealth(msg::ComponentState::RUNNING, k + 1, "granting steps");
     next_health_ += kHealthPeriod;

@@ -28,14 +28,15 @@ struct HealthOptions {
 };
 
 void printTable(const nlohmann::ordered_json& rows, std::uint32_t domain) {
-  std::printf("%-22s %-14s %10s %9s %6s %8s %8s %8s  %s\n", "COMPONENT", "STATE", "STEPS",
+  std::printf("%-22s %-14s %10s %6s %9s %6s %8s %8s %8s  %s\n", "COMPONENT", "STATE", "STEPS", "LAG",
               "OVERRUNS", "STALE", "DROPPED", "REFUSED", "AGE [s]", "MESSAGE");
   for (const auto& r : rows) {
     std::string state = r["state"].is_string() ? r["state"].get<std::string>() : r["state"].dump();
     if (!r["alive"].get<bool>()) state += " (gone)";
-    std::printf("%-22s %-14s %10llu %9llu %6llu %8llu %8llu %8.1f  %s\n",
+    std::printf("%-22s %-14s %10llu %6llu %9llu %6llu %8llu %8llu %8.1f  %s\n",
                 r["component"].get<std::string>().c_str(), state.c_str(),
                 static_cast<unsigned long long>(r["steps_done"].get<std::uint64_t>()),
+                static_cast<unsigned long long>(r["lag_steps"].get<std::uint64_t>()),
                 static_cast<unsigned long long>(r["overruns"].get<std::uint64_t>()),
                 static_cast<unsigned long long>(r["stale_inputs"].get<std::uint64_t>()),
                 static_cast<unsigned long long>(r["samples_dropped"].get<std::uint64_t>()),
@@ -152,7 +153,8 @@ CLI::App* addHealthCommand(CLI::App& app, int& exit_code) {
   cmd->add_flag("--json", options->json, "JSON rows instead of a table (one line per refresh)");
   addDomainOption(*cmd, options->domain);
   cmd->footer(
-      "Refreshed every second until Ctrl-C. AGE is the time since the component\n"
+      "Refreshed every second until Ctrl-C. LAG is how many steps a component's last\n"
+      "health is behind the one furthest ahead (the time master); AGE is the time since the component\n"
       "stamped its last health (wall clock; a running component reports every second);\n"
       "OVERRUNS and STALE count the paced steps it skipped or took with an old input.\n"
       "(gone): the component's participant left the bus.");

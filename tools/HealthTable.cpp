@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "tools/HealthTable.hpp"
 
+#include <algorithm>
 #include <chrono>
 
 #include "bus/Stamp.hpp"
@@ -38,12 +39,16 @@ double ageSeconds(const msg::Health& h) {
 
 nlohmann::ordered_json healthTable(const std::map<std::string, HealthEntry>& entries, const ToolBus& tool_bus) {
   const auto participants = tool_bus.participants();
+  // Lag: steps behind the component furthest ahead (the time master grants first).
+  std::uint64_t ahead = 0;
+  for (const auto& [name, e] : entries) ahead = std::max<std::uint64_t>(ahead, e.health.step_reached());
   auto rows = nlohmann::ordered_json::array();
   for (const auto& [name, e] : entries) {
     const auto p = participants.find(e.writer.guidPrefix);
     rows.push_back({{"component", name},
                     {"state", msg::toJson(e.health.state())},
                     {"steps_done", e.health.steps_done()},
+                    {"lag_steps", ahead - e.health.step_reached()},
                     {"overruns", overruns(e.health)},
                     {"stale_inputs", staleInputs(e.health)},
                     {"samples_dropped", e.health.samples_dropped()},

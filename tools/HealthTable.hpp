@@ -17,8 +17,9 @@ struct HealthEntry {
   Guid writer;
 };
 
-/// One row per component: state, steps, overruns, stale inputs, drops, refusals, age of
-/// the last health, alive, message (`flatsat health --json`, the web view).
+/// One row per component: state, steps done, lag (steps behind the component furthest
+/// ahead, at their last health), overruns (deadline misses), stale inputs, drops, refusals,
+/// age of the last health, alive, message (`flatsat health --json`, the web view).
 nlohmann::ordered_json healthTable(const std::map<std::string, HealthEntry>& entries, const ToolBus& tool_bus);
 
 }  // namespace flatsat::tools

@@ -44,7 +44,7 @@ td:first-child, th:first-child, td.state, td.message { text-align: left; }
 <body>
 <h1>flatsat live</h1>
 <p id="status">waiting for the rig&hellip;</p>
-<table id="health"><thead><tr><th>component</th><th>state</th><th>steps</th><th>overruns</th><th>stale</th>
+<table id="health"><thead><tr><th>component</th><th>state</th><th>steps</th><th>lag</th><th>overruns</th><th>stale</th>
 <th>dropped</th><th>refused</th><th>age [s]</th><th>message</th></tr></thead><tbody></tbody></table>
 <div>
 <canvas id="rate" width="560" height="260" data-title="body rate |&omega;| [deg/s]"></canvas>
@@ -77,7 +77,7 @@ async function refresh() {
     for (const r of s.health) {
       const row = body.insertRow(); row.dataset.component = r.component;
       cell(row, r.component); cell(row, r.state + (r.alive ? '' : ' (gone)'), r.alive ? 'state' : 'state gone');
-      cell(row, r.steps_done); cell(row, r.overruns); cell(row, r.stale_inputs); cell(row, r.samples_dropped);
+      cell(row, r.steps_done); cell(row, r.lag_steps); cell(row, r.overruns); cell(row, r.stale_inputs); cell(row, r.samples_dropped);
       cell(row, r.commands_refused); cell(row, r.age_s.toFixed(1)); cell(row, r.message, 'message');
     }
     document.getElementById('status').textContent =

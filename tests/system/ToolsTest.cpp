@@ -241,12 +241,15 @@ TEST_CASE("health --once lists every component of the running rig", "[system][to
   REQUIRE(json.exit_code == 0);
   const auto rows = nlohmann::json::parse(json.output);
   CHECK(rows.size() == kComponents.size());
+  int furthest_ahead = 0;  // lag_steps: behind the component furthest ahead, so one has 0
   for (const auto& row : rows) {
     CAPTURE(row.dump());
     CHECK(row["alive"] == true);
+    furthest_ahead += row["lag_steps"].get<std::uint64_t>() == 0 ? 1 : 0;
     // A stepping component reports every second; the time master on change only.
     if (row["component"] != "dynamics_server") CHECK(row["age_s"].get<double>() < 5.0);
   }
+  CHECK(furthest_ahead >= 1);
 }
 
 TEST_CASE("export writes one CSV per recorded topic: a row per step, units in the header",
