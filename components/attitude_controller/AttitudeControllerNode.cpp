@@ -34,52 +34,22 @@ msg::WheelTorqueCmd toMessage(const SunPointingControllerOutput& out) {
 
 AttitudeControllerNode::AttitudeControllerNode(bus::Bus& bus, bus::NodeOptions options,
                                                const AttitudeControllerNodeParams& params)
-    : Component(bus, std::move(options)), controller_(params.law) {
+    : Component(bus, std::move(options)),
+      controller_(params.law),
+      params_(bus, name(),
+              {{"kp_Nm_per_rad", [](SunPointingControllerParams& p) -> double& { return p.kp_Nm_per_rad; }},
+               {"kd_Nm_s_per_rad", [](SunPointingControllerParams& p) -> double& { return p.kd_Nm_s_per_rad; }},
+               {"max_torque_Nm", [](SunPointingControllerParams& p) -> double& { return p.max_torque_Nm; }},
+               {"max_rate_rad_s", [](SunPointingControllerParams& p) -> double& { return p.max_rate_rad_s; }}}) {
   if (params.s2_orbital) onboard_.emplace(*params.s2_orbital);
 }
 
-void AttitudeControllerNode::receive(const msg::ParamCmd& command) {
-  if (bus::text(command.target()) != name()) return;
-  std::lock_guard lock(commands_mutex_);
-  pending_.push_back(command);
-}
-
-void AttitudeControllerNode::takeCommands() {
-  std::vector<msg::ParamCmd> pending;
-  {
-    std::lock_guard lock(commands_mutex_);
-    pending.swap(pending_);
-  }
-  for (const auto& command : pending) {
-    // The keys of the scenario's components.<name> section that the law
-    // takes as plain numbers; the wheel geometry and the axis stay fixed.
-    const std::string key = bus::text(command.key());
-    SunPointingControllerParams p = controller_.params();
-    double* field = key == "kp_Nm_per_rad"     ? &p.kp_Nm_per_rad
-                    : key == "kd_Nm_s_per_rad" ? &p.kd_Nm_s_per_rad
-                    : key == "max_torque_Nm"   ? &p.max_torque_Nm
-                    : key == "max_rate_rad_s"  ? &p.max_rate_rad_s
-                                               : nullptr;
-    if (field == nullptr) {
-      acks_.queue(command.command_id(), "param", false,
-                  key + ": not settable; kp_Nm_per_rad, kd_Nm_s_per_rad, max_torque_Nm, "
-                        "max_rate_rad_s are");
-      continue;
-    }
-    *field = command.value();
-    if (const auto problems = p.validate(); !problems.empty()) {
-      acks_.queue(command.command_id(), "param", false, problems.front());
-      continue;
-    }
-    controller_ = SunPointingController(p);
-    spdlog::info("{}: {} set to {} by {}", name(), key, command.value(),
-                 bus::text(command.header().source()));
-    acks_.queue(command.command_id(), "param", true, fmt::format("{} = {}", key, command.value()));
-  }
-}
-
 void AttitudeControllerNode::step(const bus::StepContext& ctx) {
-  takeCommands();
+  // The law's plain numbers are settable; the wheel geometry and the axis stay fixed.
+  if (auto changed = params_.take(controller_.params(), [](const SunPointingControllerParams& p) { return p.validate(); },
+                                  acks_)) {
+    controller_ = SunPointingController(*changed);
+  }
   acks_.publish(ctx, name());
   const auto tach = tach_.at(ctx.step);
   const auto& used = last_tach_.update(tach);

@@ -1,10 +1,9 @@
 // SPDX-License-Identifier: Apache-2.0
 #pragma once
-#include <mutex>
 #include <optional>
-#include <vector>
 
 #include "bus/CommandAcks.hpp"
+#include "bus/ParamCommands.hpp"
 #include "bus/Component.hpp"
 #include "bus/NodeMain.hpp"
 #include "components/common/LastValid.hpp"
@@ -30,9 +29,6 @@ class AttitudeControllerNode final : public bus::Component {
 
  private:
   void step(const bus::StepContext& ctx) override;
-  void receive(const msg::ParamCmd& command);
-  /// Applies the parameter changes received since the last step.
-  void takeCommands();
 
   bus::InputOf<bus::topics::kAttitudeEstimate>& estimate_ =
       addInput(bus::topics::kAttitudeEstimate);
@@ -42,11 +38,8 @@ class AttitudeControllerNode final : public bus::Component {
       addOutput(bus::topics::kWheelTorqueCmd);
   SunPointingController controller_;
   std::optional<estimator::ReferenceModel> onboard_;  // local orbital target only
-  std::mutex commands_mutex_;
-  std::vector<msg::ParamCmd> pending_;  // received, applied at the next step
   bus::CommandAcks acks_{bus_};
-  bus::ReaderOf<bus::topics::kParamCmd> commands_{
-      bus_, bus::topics::kParamCmd, [this](const msg::ParamCmd& c) { receive(c); }};
+  bus::ParamCommands<SunPointingControllerParams> params_;
 };
 
 /// components.<name>, with the wheel geometry from spacecraft.wheels.

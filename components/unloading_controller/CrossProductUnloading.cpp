@@ -35,6 +35,8 @@ CrossProductUnloading::CrossProductUnloading(const Params& params) : params_(par
 
 void CrossProductUnloading::reset() { unloading_ = false; }
 
+void CrossProductUnloading::retune(const Params& params) { params_ = validated(params, "CrossProductUnloadingParams"); }
+
 CrossProductUnloadingOutput CrossProductUnloading::step(const Input& in, std::int64_t /*t_ns*/) {
   Output out;
   out.h_B_Nms = params_.wheels.momentum_B_Nms(in.wheel_speed_rad_s) - params_.h_target_B_Nms;

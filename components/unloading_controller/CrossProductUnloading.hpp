@@ -55,6 +55,10 @@ class CrossProductUnloading {
   /// Hysteresis back to "not unloading".
   void reset();
 
+  /// New gain, thresholds or limits, the hysteresis state kept (a change in flight).
+  /// @throws std::invalid_argument listing every violation of params.validate().
+  void retune(const Params& params);
+
   /// The law does not depend on time; t_ns [ns] is kept for the common API.
   Output step(const Input& in, std::int64_t t_ns);
 

@@ -56,6 +56,12 @@ MagneticModes::MagneticModes(const Params& params)
 
 void MagneticModes::reset() { enter(params_.initial_mode); }
 
+void MagneticModes::retune(const Params& params) {
+  const Params& checked = validated(params, "MagneticModesParams");
+  unload_.retune(checked.unload);
+  params_ = checked;
+}
+
 void MagneticModes::command(MagneticMode mode) {
   if (mode != mode_) enter(mode);
 }

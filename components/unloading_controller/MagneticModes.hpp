@@ -86,6 +86,11 @@ class MagneticModes {
   /// Back to initial_mode with every law reset.
   void reset();
 
+  /// New unloading gain, thresholds and handover settings, the mode and every law's state
+  /// kept (a change in flight); the B-dot laws and the aero split keep their settings.
+  /// @throws std::invalid_argument listing every violation of params.validate().
+  void retune(const Params& params);
+
   /// Enters `mode` at the next step (its law reset); the same mode: nothing changes.
   void command(MagneticMode mode);
 

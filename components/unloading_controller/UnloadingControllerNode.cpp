@@ -120,6 +120,14 @@ UnloadingControllerNode::UnloadingControllerNode(bus::Bus& bus, bus::NodeOptions
     : Component(bus, std::move(options)),
       mode_commands_(bus, bus::topics::kUnloadingModeCmd, [this](const msg::ModeCmd& c) { receive(c); }),
       modes_(params.modes),
+      param_commands_(
+          bus, name(),
+          {{"gain_per_s", [](MagneticModesParams& p) -> double& { return p.unload.gain_per_s; }},
+           {"h_start_Nms", [](MagneticModesParams& p) -> double& { return p.unload.h_start_Nms; }},
+           {"h_stop_Nms", [](MagneticModesParams& p) -> double& { return p.unload.h_stop_Nms; }},
+           {"min_field_T", [](MagneticModesParams& p) -> double& { return p.unload.min_field_T; }},
+           {"handover_rate_rad_s", [](MagneticModesParams& p) -> double& { return p.handover_rate_rad_s; }},
+           {"handover_hold_s", [](MagneticModesParams& p) -> double& { return p.handover_hold_s; }}}),
       arbiter_(params.modes.unload.max_dipole_Am2),
       quiet_fraction_(params.quiet_fraction) {
   if (params.onboard) onboard_.emplace(*params.onboard);
@@ -166,6 +174,10 @@ void UnloadingControllerNode::step(const bus::StepContext& ctx) {
       }
       mode_command_ids_.clear();
     }
+  }
+  if (auto retuned = param_commands_.take(modes_.params(), [](const MagneticModesParams& p) { return p.validate(); },
+                                          acks_)) {
+    modes_.retune(*retuned);
   }
   acks_.publish(ctx, name());
   const auto reading = tach_.at(ctx.step);

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "bus/CommandAcks.hpp"
+#include "bus/ParamCommands.hpp"
 #include "bus/Component.hpp"
 #include "bus/NodeMain.hpp"
 #include "components/common/LastValid.hpp"
@@ -85,6 +86,7 @@ class UnloadingControllerNode final : public bus::Component {
   bus::CommandAcks acks_{bus_};
   bus::ReaderOf<bus::topics::kUnloadingModeCmd> mode_commands_;
   MagneticModes modes_;
+  bus::ParamCommands<MagneticModesParams> param_commands_;
   CoilArbiter arbiter_;
   double quiet_fraction_;
   std::optional<estimator::ReferenceModel> onboard_;

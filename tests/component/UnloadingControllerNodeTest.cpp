@@ -6,7 +6,11 @@
 // computed here independently, stamped with the step it answers.
 #include <catch2/catch.hpp>
 
+#include <map>
+#include <mutex>
 #include <optional>
+#include <string>
+#include <vector>
 #include <thread>
 
 #include "bus/Convert.hpp"
@@ -28,14 +32,36 @@ Eigen::Vector3d fieldAt(std::uint64_t k) {
   return Eigen::Vector3d(2e-5 * std::cos(0.1 * k), 1e-5, -3e-5 * std::sin(0.1 * k));
 }
 
+/// A parameter change the script sends with the inputs of a step.
+struct ParamChange {
+  std::uint64_t step;
+  std::uint64_t id;
+  std::string key;
+  double value;
+};
+
 class ScriptedPeers final : public bus::TimeMaster {
  public:
-  ScriptedPeers(bus::Bus& bus, bus::NodeOptions options, std::optional<std::uint64_t> detumble_at = {})
-      : TimeMaster(bus, std::move(options), {100'000'000, kSteps - 1}), detumble_at_(detumble_at) {}
+  ScriptedPeers(bus::Bus& bus, bus::NodeOptions options, std::optional<std::uint64_t> detumble_at = {},
+                std::vector<ParamChange> changes = {})
+      : TimeMaster(bus, std::move(options), {100'000'000, kSteps - 1}),
+        detumble_at_(detumble_at),
+        changes_(std::move(changes)) {}
   std::map<std::uint64_t, msg::DipoleCmd> received;
+  std::vector<msg::CommandAck> acks;  // as they came (a Fast DDS thread), read after run()
 
  private:
   void publishStep(const bus::StepContext& ctx) override {
+    for (const auto& change : changes_) {
+      if (change.step != ctx.step) continue;
+      msg::ParamCmd command;
+      command.header(bus::makeHeader(ctx, "operator"));
+      command.command_id(change.id);
+      bus::setText(command.target(), "unloading_controller");
+      bus::setText(command.key(), change.key);
+      command.value(change.value);
+      param_.write(command);
+    }
     if (detumble_at_ == ctx.step) {
       msg::ModeCmd command;
       command.header(bus::makeHeader(ctx, "operator"));
@@ -60,7 +86,14 @@ class ScriptedPeers final : public bus::TimeMaster {
   bus::WriterOf<bus::topics::kMagnetometer>& field_ = addOutput(bus::topics::kMagnetometer);
   bus::InputOf<bus::topics::kDipoleCmd>& dipole_ = addInput(bus::topics::kDipoleCmd);
   bus::WriterOf<bus::topics::kUnloadingModeCmd>& mode_ = addOutput(bus::topics::kUnloadingModeCmd);
+  bus::WriterOf<bus::topics::kParamCmd>& param_ = addOutput(bus::topics::kParamCmd);
+  std::mutex acks_mutex_;
+  bus::ReaderOf<bus::topics::kCommandAck> ack_reader_{bus_, bus::topics::kCommandAck, [this](const msg::CommandAck& a) {
+                                                        std::lock_guard lock(acks_mutex_);
+                                                        acks.push_back(a);
+                                                      }};
   std::optional<std::uint64_t> detumble_at_;
+  std::vector<ParamChange> changes_;
 };
 
 }  // namespace
@@ -148,4 +181,52 @@ TEST_CASE("a mode command on flatsat/unloading_mode_cmd switches the node to B-d
   }
   REQUIRE(switched);
   CHECK(*switched < kSteps - 5);
+}
+
+TEST_CASE("the unloading controller takes gain and threshold changes in flight, refuses bad ones",
+          "[component][dds][cmd]") {
+  const std::uint32_t domain = test::testDomain();
+  Eigen::Matrix<double, 3, 4> axes = Eigen::Matrix<double, 3, 4>::Zero();
+  axes.col(0) = Eigen::Vector3d::UnitX();
+  axes.col(1) = Eigen::Vector3d::UnitY();
+  axes.col(2) = Eigen::Vector3d::UnitZ();
+  unloading_controller::MagneticModesParams params;
+  params.unload.gain_per_s = kGain;
+  params.unload.max_dipole_Am2 = Eigen::Vector3d::Constant(1e6);  // never saturates: m ∝ k
+  params.unload.wheels.count = 3;
+  params.unload.wheels.axes_B = axes;
+  params.unload.wheels.inertia_kg_m2 = Eigen::Vector4d(kWheelInertia, kWheelInertia, kWheelInertia, 0);
+  const bus::Schedule node_view = {
+      {"dynamics_server", 1}, {"unloading_controller", 1}, {"wheel_tach", 1}, {"magnetometer", 1}};
+  const bus::Schedule master_view = {{"dynamics_server", 1}, {"unloading_controller", 1}};
+  // Doubled gain at step 10; a stop threshold above the start one at 12 (refused); an unknown key at 14.
+  const std::vector<ParamChange> changes = {
+      {10, 1, "gain_per_s", 2 * kGain}, {12, 2, "h_stop_Nms", 5.0}, {14, 3, "colour", 1.0}};
+
+  bus::Bus script_bus({domain, bus::NetworkProfile::kLoopback, "script"});
+  bus::Bus node_bus({domain, bus::NetworkProfile::kLoopback, "unloading_controller"});
+  ScriptedPeers script(script_bus, {"dynamics_server", master_view}, std::nullopt, changes);
+  unloading_controller::UnloadingControllerNode node(node_bus, {"unloading_controller", node_view}, {params});
+  std::thread node_thread([&] { node.run(); });
+  script.run();
+  node_thread.join();
+
+  REQUIRE(script.acks.size() == 3);
+  std::map<std::uint64_t, msg::CommandAck> by_id;
+  for (const auto& ack : script.acks) by_id[ack.command_id()] = ack;
+  CHECK(by_id[1].accepted());
+  CHECK_FALSE(by_id[2].accepted());
+  CHECK(bus::text(by_id[2].reason()).find("h_start_Nms") != std::string::npos);
+  CHECK_FALSE(by_id[3].accepted());
+  CHECK(bus::text(by_id[3].reason()).find("colour: not settable") != std::string::npos);
+  const std::uint64_t from = by_id[1].header().step();  // the step the new gain applies from
+  REQUIRE(script.received.size() == kSteps);
+  for (const auto& [k, dipole] : script.received) {
+    CAPTURE(k, from);
+    const Eigen::Vector3d h = kWheelInertia * speedsAt(k).head<3>();
+    const Eigen::Vector3d b = fieldAt(k);
+    const double gain = k >= from ? 2 * kGain : kGain;
+    CHECK((bus::vec3(dipole.m_body_Am2()) - gain * h.cross(b) / b.squaredNorm()).norm() <=
+          1e-9 * gain * h.cross(b).norm() / b.squaredNorm());
+  }
 }
