@@ -96,22 +96,23 @@ class ScriptedPeers final : public bus::TimeMaster {
   std::vector<ParamChange> changes_;
 };
 
+/// The unloading law with gain kGain on three wheels along x, y, z of kWheelInertia.
+unloading_controller::MagneticModesParams crossProduct(double max_dipole_Am2) {
+  unloading_controller::MagneticModesParams params;
+  params.unload.gain_per_s = kGain;
+  params.unload.max_dipole_Am2 = Eigen::Vector3d::Constant(max_dipole_Am2);
+  params.unload.wheels.count = 3;
+  params.unload.wheels.axes_B = Eigen::Matrix<double, 3, 4>::Identity();
+  params.unload.wheels.inertia_kg_m2 = Eigen::Vector4d(kWheelInertia, kWheelInertia, kWheelInertia, 0);
+  return params;
+}
+
 }  // namespace
 
 TEST_CASE("unloading controller node answers every step with the cross-product law",
           "[component][dds]") {
   const std::uint32_t domain = test::testDomain();
-  Eigen::Matrix<double, 3, 4> axes = Eigen::Matrix<double, 3, 4>::Zero();
-  axes.col(0) = Eigen::Vector3d::UnitX();
-  axes.col(1) = Eigen::Vector3d::UnitY();
-  axes.col(2) = Eigen::Vector3d::UnitZ();
-
-  unloading_controller::MagneticModesParams params;  // initial mode: unload
-  params.unload.gain_per_s = kGain;
-  params.unload.max_dipole_Am2 = Eigen::Vector3d::Constant(kMaxDipole);
-  params.unload.wheels.count = 3;
-  params.unload.wheels.axes_B = axes;
-  params.unload.wheels.inertia_kg_m2 = Eigen::Vector4d(kWheelInertia, kWheelInertia, kWheelInertia, 0);
+  const auto params = crossProduct(kMaxDipole);  // initial mode: unload
 
   const bus::Schedule node_view = {
       {"dynamics_server", 1}, {"unloading_controller", 1}, {"wheel_tach", 1}, {"magnetometer", 1}};
@@ -186,16 +187,7 @@ TEST_CASE("a mode command on flatsat/unloading_mode_cmd switches the node to B-d
 TEST_CASE("the unloading controller takes gain and threshold changes in flight, refuses bad ones",
           "[component][dds][cmd]") {
   const std::uint32_t domain = test::testDomain();
-  Eigen::Matrix<double, 3, 4> axes = Eigen::Matrix<double, 3, 4>::Zero();
-  axes.col(0) = Eigen::Vector3d::UnitX();
-  axes.col(1) = Eigen::Vector3d::UnitY();
-  axes.col(2) = Eigen::Vector3d::UnitZ();
-  unloading_controller::MagneticModesParams params;
-  params.unload.gain_per_s = kGain;
-  params.unload.max_dipole_Am2 = Eigen::Vector3d::Constant(1e6);  // never saturates: m ∝ k
-  params.unload.wheels.count = 3;
-  params.unload.wheels.axes_B = axes;
-  params.unload.wheels.inertia_kg_m2 = Eigen::Vector4d(kWheelInertia, kWheelInertia, kWheelInertia, 0);
+  const auto params = crossProduct(1e6);  // never saturates: m ∝ k
   const bus::Schedule node_view = {
       {"dynamics_server", 1}, {"unloading_controller", 1}, {"wheel_tach", 1}, {"magnetometer", 1}};
   const bus::Schedule master_view = {{"dynamics_server", 1}, {"unloading_controller", 1}};
