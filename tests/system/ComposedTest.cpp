@@ -124,12 +124,12 @@ TEST_CASE("a scenario a composed rig cannot hold is refused, naming the componen
 
 TEST_CASE("every closed-loop scenario records the same composed as over the bus",
           "[system][composed]") {
-  // The long verification runs (S0, MEKF, unloading, B-dot, S4, thruster dumping, S1) go
+  // The long verification runs (S0, MEKF, unloading, B-dot, S4, S2, thruster dumping, S1) go
   // composed; here each of their scenarios shows the two rigs agree to the bit, over a
   // stretch that holds every component's first outputs and the loops' first actions.
   const std::string dir = std::string(FLATSAT_SCENARIO_DIR) + "/";
   for (const std::string name : {"s0_no_magnetometer", "mekf", "mekf_star_tracker",
-                                 "unloading_10orbits", "detumble", "s4_spin", "thruster_dumping",
+                                 "unloading_10orbits", "detumble", "s4_spin", "s2_aero", "thruster_dumping",
                                  "s1_example"}) {
     const std::string scenario = dir + name + ".yaml";
     const std::string shorter = "--set duration_orbits=null --set duration_s=120";

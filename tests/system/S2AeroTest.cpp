@@ -64,9 +64,9 @@ double quantile(const std::vector<double>& sorted, double q) {
 
 TEST_CASE("S2 at 400 km: coils and flaps meet the demanded torque, the flaps with its component along B",
           "[system][s2]") {
-  // Every component its own process over DDS.
+  // Composed: ComposedTest shows s2_aero records the same over DDS, every component its own process.
   const std::string out = test::freshDir("s2-aero");
-  const auto run = test::runScenario(kScenario, out, "", true);
+  const auto run = test::runScenario(kScenario, out, "--composed", true);
   const auto& s = run.summary;
   INFO(s.dump(2));
   const Met met = torquesMet(out);

@@ -42,7 +42,7 @@ TEST_CASE("the live web view shows every component of a running rig in headless 
   const std::string run = test::freshDir("web");
   test::Background rig(test::kFlatsat + " run " + std::string(FLATSAT_SCENARIO_DIR) +
                            "/default.yaml -q --no-plots --out " + run +
-                           " --set mode=paced --set duration_orbits=null --set duration_s=60",
+                           " --set mode=paced --set duration_orbits=null --set duration_s=25",
                        run + ".log");
   REQUIRE(test::waitForText(fs::path(run) / "logs" / "dynamics_server.log", "every component ready", 120, rig));
   const std::string port = std::to_string(18000 + domain);  // domains are exclusive per test process
