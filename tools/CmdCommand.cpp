@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+#include "tools/Guarded.hpp"
 #include "tools/CmdCommand.hpp"
 
 #include <cmath>
@@ -107,16 +108,6 @@ int send(const Def& def, typename Def::Type command, const std::string& what, co
               static_cast<unsigned long long>(ack->header().step()), t_s,
               bus::text(ack->reason()).c_str());
   return ack->accepted() ? 0 : 3;
-}
-
-template <class Run>
-void guarded(int& exit_code, Run&& run) {
-  try {
-    exit_code = run();
-  } catch (const std::exception& e) {
-    std::cerr << "error: " << e.what() << "\n";
-    exit_code = 1;
-  }
 }
 
 std::string shortNumber(double value) {

@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+#include "tools/Guarded.hpp"
 #include "tools/ExportCommand.hpp"
 
 #include <algorithm>
@@ -150,12 +151,7 @@ CLI::App* addExportCommand(CLI::App& app, int& exit_code) {
       exit_code = 2;
       return;
     }
-    try {
-      exit_code = exportRecording(*options);
-    } catch (const std::exception& e) {
-      std::cerr << "error: " << e.what() << "\n";
-      exit_code = 1;
-    }
+    guarded(exit_code, [&] { return exportRecording(*options); });
   });
   return cmd;
 }

@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+#include "tools/Guarded.hpp"
 #include "tools/HealthCommand.hpp"
 
 #include <unistd.h>
@@ -158,14 +159,7 @@ CLI::App* addHealthCommand(CLI::App& app, int& exit_code) {
       "stamped its last health (wall clock; a running component reports every second);\n"
       "OVERRUNS and STALE count the paced steps it skipped or took with an old input.\n"
       "(gone): the component's participant left the bus.");
-  cmd->callback([options, &exit_code] {
-    try {
-      exit_code = health(*options);
-    } catch (const std::exception& e) {
-      std::cerr << "error: " << e.what() << "\n";
-      exit_code = 1;
-    }
-  });
+  cmd->callback([options, &exit_code] { guarded(exit_code, [&] { return health(*options); }); });
   return cmd;
 }
 

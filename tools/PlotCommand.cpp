@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+#include "tools/Guarded.hpp"
 #include "tools/PlotCommand.hpp"
 
 #include <spawn.h>
@@ -381,14 +382,7 @@ CLI::App* addPlotCommand(CLI::App& app, int& exit_code) {
       "ground_track .png (dipole and thrusters when recorded); the data and the\n"
       "gnuplot script stay in <out>/gnuplot (rerun: gnuplot <out>/gnuplot/plots.gp).\n"
       "Needs gnuplot (Debian: gnuplot-nox).");
-  cmd->callback([options, &exit_code] {
-    try {
-      exit_code = plot(*options);
-    } catch (const std::exception& e) {
-      std::cerr << "error: " << e.what() << "\n";
-      exit_code = 1;
-    }
-  });
+  cmd->callback([options, &exit_code] { guarded(exit_code, [&] { return plot(*options); }); });
   return cmd;
 }
 

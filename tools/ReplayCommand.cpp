@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+#include "tools/Guarded.hpp"
 #include "tools/ReplayCommand.hpp"
 
 #include <algorithm>
@@ -292,14 +293,7 @@ CLI::App* addReplayCommand(CLI::App& app, int& exit_code) {
       "  flatsat replay RUN/recording.sqlite --wait estimator --capture /tmp/x/re.sqlite\n"
       "Grants follow the recorded step grants (period, final step). With --capture it\n"
       "prints, per captured topic, how many samples are byte-identical to the recording.");
-  cmd->callback([options, &exit_code] {
-    try {
-      exit_code = replay(*options);
-    } catch (const std::exception& e) {
-      std::cerr << "error: " << e.what() << "\n";
-      exit_code = 1;
-    }
-  });
+  cmd->callback([options, &exit_code] { guarded(exit_code, [&] { return replay(*options); }); });
   return cmd;
 }
 
