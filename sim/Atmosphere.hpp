@@ -5,6 +5,9 @@
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "sim/Constants.hpp"
 
 namespace flatsat::sim {
 
@@ -55,6 +58,12 @@ struct AtmosphereParams {
 /// in every force evaluation. The ellipsoid's axis is taken as the z axis of r's frame,
 /// so r may be inertial (N) or Earth-fixed.
 double approximateHeight_m(const Eigen::Vector3d& r_m);
+
+/// [m/s] Velocity relative to the air, which turns with the Earth about the N z axis
+/// (equator of date ≈ ECI): v − ω⊕ ẑ × r. The wind the spacecraft feels is its negative.
+inline Eigen::Vector3d velocityThroughAir_N_m_s(const Eigen::Vector3d& r_N_m, const Eigen::Vector3d& v_N_m_s) {
+  return v_N_m_s - kEarthRotationRate_rad_s * Eigen::Vector3d::UnitZ().cross(r_N_m);
+}
 
 /// [kg/m³] Exponential atmosphere, Vallado Table 8-4 (CIRA-72 based):
 /// ρ = ρ0 exp(−(h − h0)/H) with the band whose base h0 is the highest not above h.

@@ -121,8 +121,7 @@ DynamicsModel::Environment DynamicsModel::environmentAt(double t_s) {
   const Eigen::Matrix3d R_EN_now = R_EN(jd_epoch_ + t_s / kSecondsPerDay);
   env.r_E_m = R_EN_now * r_N;
   env.b_N_T = R_EN_now.transpose() * (harmonics_ ? harmonics_->b_E_T(env.r_E_m) : dipole_.b_E_T(env.r_E_m));
-  // The atmosphere turns with the Earth about the N z axis (equator of date ≈ ECI).
-  env.wind_N_m_s = kEarthRotationRate_rad_s * Eigen::Vector3d::UnitZ().cross(r_N) - env.orbit.v_N_m_s;
+  env.wind_N_m_s = -velocityThroughAir_N_m_s(r_N, env.orbit.v_N_m_s);
   env.r_sun_N_m = sunPosition_N_m(jd_epoch_ + (t_s + kTtMinusUtc_s) / kSecondsPerDay);
   env.illumination = illumination(r_N, env.r_sun_N_m);
   env.solar_flux_W_m2 = solarFlux_W_m2((env.r_sun_N_m - r_N).norm(), env.illumination);

@@ -85,7 +85,7 @@ Eigen::Vector3d zonalAcceleration_N(const Eigen::Vector3d& r_N_m, bool j2, bool 
 
 Eigen::Vector3d dragAcceleration_N(const Eigen::Vector3d& r_N_m, const Eigen::Vector3d& v_N_m_s, double density_kg_m3,
                                    double ballistic_m2_kg) {
-  const Eigen::Vector3d v_rel = v_N_m_s - kEarthRotationRate_rad_s * Eigen::Vector3d::UnitZ().cross(r_N_m);
+  const Eigen::Vector3d v_rel = velocityThroughAir_N_m_s(r_N_m, v_N_m_s);
   return (-0.5 * density_kg_m3 * ballistic_m2_kg * v_rel.norm()) * v_rel;
 }
 

@@ -8,7 +8,7 @@
 #include "bus/Serialization.hpp"
 #include "bus/Topics.hpp"
 #include "components/unloading_controller/UnloadingControllerNode.hpp"
-#include "sim/Constants.hpp"
+#include "sim/Atmosphere.hpp"
 
 namespace flatsat::tools {
 
@@ -41,13 +41,12 @@ void summarizeS2(const bus::Scenario& scenario, const bus::Recording& recording,
                     [&](std::uint64_t step, const std::string&, const std::vector<std::uint8_t>& bytes) {
                       const auto t = bus::deserialize<TruthDef>(bytes);
                       const Eigen::Quaterniond q_NB = bus::quat(t.q_inertial_body());
-                      const Eigen::Vector3d r = bus::vec3(t.r_inertial_m());
-                      const Eigen::Vector3d wind_N =
-                          bus::vec3(t.v_inertial_m_s()) -
-                          Eigen::Vector3d(0.0, 0.0, sim::kEarthRotationRate_rad_s).cross(r);
-                      const Eigen::Vector3d wind_B = q_NB.conjugate() * wind_N.normalized();
+                      const Eigen::Vector3d motion_B =
+                          q_NB.conjugate() *
+                          sim::velocityThroughAir_N_m_s(bus::vec3(t.r_inertial_m()), bus::vec3(t.v_inertial_m_s()))
+                              .normalized();
                       truth[step] = {bus::vec3(t.b_body_T()), bus::vec3(t.tau_flaps_body_Nm()),
-                                     -bus::vec3(t.f_flaps_body_N()).dot(wind_B)};
+                                     -bus::vec3(t.f_flaps_body_N()).dot(motion_B)};
                     });
   double aero = 0.0, along_B = 0.0, least = 0.0, drag = 0.0, drag_alone = 0.0, delivered = 0.0, plant_drag = 0.0;
   std::uint64_t commands = 0;

@@ -9,7 +9,6 @@
 #include "bus/Convert.hpp"
 #include "components/common/ReferenceParams.hpp"
 #include "sim/DynamicsServerParams.hpp"
-#include "sim/Constants.hpp"
 #include "sim/KeplerOrbit.hpp"
 
 namespace flatsat::unloading_controller {
@@ -226,11 +225,10 @@ void UnloadingControllerNode::step(const bus::StepContext& ctx) {
 }
 
 double UnloadingControllerNode::flapScale_Nm(const estimator::ReferenceVectors& reference) const {
-  const Eigen::Vector3d wind_N =
-      reference.v_N_m_s - Eigen::Vector3d(0.0, 0.0, sim::kEarthRotationRate_rad_s).cross(reference.r_N_m);
+  const double speed2 = sim::velocityThroughAir_N_m_s(reference.r_N_m, reference.v_N_m_s).squaredNorm();
   const double density = atmosphere_ ? atmosphere_->density_kg_m3(reference.r_N_m, reference.sun_N_unit)
                                      : flaps_->density_kg_m3;
-  return 2.0 * density * flaps_->plate_area_m2 * wind_N.squaredNorm() * flaps_->lever_arm_m;
+  return 2.0 * density * flaps_->plate_area_m2 * speed2 * flaps_->lever_arm_m;
 }
 
 void UnloadingControllerNode::publishFlaps(const bus::StepContext& ctx, const MagneticModesInput& in,
