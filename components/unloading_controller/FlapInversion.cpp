@@ -8,6 +8,7 @@
 #include <Eigen/Dense>
 
 #include "components/common/Validation.hpp"
+#include "sim/Flaps.hpp"
 
 namespace flatsat::unloading_controller {
 namespace {
@@ -15,7 +16,8 @@ namespace {
 constexpr double kMaxUsefulAngle_rad = 0.9553166181245093;  // asin √(2/3)
 constexpr double kTolerance = 1e-13;                          // [-] on (c_ax, c_az)
 
-// (−1)^i of the seed's 1-based plate number: plates 1, 3 (+y wing) yaw −, 2, 4 (−y wing) yaw +.
+// (−1)^i of the seed's 1-based plate number: plates 1, 3 (+y wing) yaw −, 2, 4 (−y wing) yaw +
+// (sim::Flaps::normalisedTorques' sign; the Newton residual below needs it per plate).
 constexpr double yawSign(int plate) { return plate % 2 == 0 ? -1.0 : 1.0; }
 // Wing partner: same wing, same centroid (G1 ↔ G3, G2 ↔ G4).
 constexpr int partner(int plate) { return (plate + 2) % 4; }
@@ -60,7 +62,7 @@ std::vector<std::string> FlapInversionParams::validate() const {
     errors.push_back("max_angle_rad: must be in (0, asin(sqrt(2/3)) = 54.7 deg]");
   }
   if (std::all_of(failed.begin(), failed.end(), [](bool f) { return f; })) {
-    errors.push_back("failed_flaps: all four plates failed");
+    errors.push_back("failed: all four plates failed");
   }
   return errors;
 }
@@ -86,16 +88,6 @@ Eigen::Vector2d seedSmallAngleSquares(double C2, bool c_az_negative) {
 FlapInversion::FlapInversion(const Params& params) : params_(validated(params, "FlapInversionParams")) {
   const double s = std::sin(params_.max_angle_rad);
   y_max_ = s * s;
-}
-
-Eigen::Vector2d FlapInversion::torques(const Eigen::Vector4d& theta_rad) {
-  Eigen::Vector2d c = Eigen::Vector2d::Zero();
-  for (int i = 0; i < 4; ++i) {
-    const double s = std::abs(std::sin(theta_rad(i)));
-    c(0) += 0.5 * std::sin(2.0 * theta_rad(i)) * s;
-    c(1) += yawSign(i) * s * s * s;
-  }
-  return c;
 }
 
 double FlapInversion::dragShape(const Eigen::Vector4d& theta_rad) {
@@ -157,7 +149,7 @@ bool FlapInversion::solveExact(const Pattern& p, const Eigen::Vector2d& c, FlapS
   }
   if (r.lpNorm<Eigen::Infinity>() > 1e-12) return false;
   out.theta_rad = p.angles(y, roll_sign);
-  out.c_achieved = torques(out.theta_rad);
+  out.c_achieved = sim::Flaps::normalisedTorques(out.theta_rad);
   out.branch = p.branch;
   out.replaced = p.replaced;
   return true;
@@ -217,9 +209,7 @@ FlapSolution FlapInversion::solveReachable(const Eigen::Vector2d& c) const {
   for (const Pattern* p : {&first, &second}) {
     if (p->branch != FlapBranch::kUnavailable && solveExact(*p, c, out)) return out;
   }
-  out = FlapSolution{};
-  out.branch = FlapBranch::kUnavailable;
-  return out;
+  return out;  // solveExact writes only what it solved
 }
 
 FlapSolution FlapInversion::solve(const Eigen::Vector2d& c) const {
@@ -268,7 +258,7 @@ FlapSolution FlapInversion::dragOnly(double theta_rad) const {
     out.theta_rad(other) = -t;
     out.replaced = true;
   }
-  out.c_achieved = torques(out.theta_rad);
+  out.c_achieved = sim::Flaps::normalisedTorques(out.theta_rad);
   out.branch = FlapBranch::kDragOnly;
   return out;
 }

@@ -33,7 +33,7 @@ struct FlapInversionParams {
 
 struct FlapSolution {
   Eigen::Vector4d theta_rad = Eigen::Vector4d::Zero();  // [rad] θ1..θ4
-  Eigen::Vector2d c_achieved = Eigen::Vector2d::Zero();  // [-] (c_ax, c_az) of these angles
+  Eigen::Vector2d c_achieved = Eigen::Vector2d::Zero();  // [-] (c_ax, c_az) of these angles (sim::Flaps)
   double scale = 1.0;      // [-] share of the demand delivered, direction kept: < 1 when out of reach
   FlapBranch branch = FlapBranch::kNeutral;
   bool replaced = false;   // a failed plate's job went to another plate (the replacement table)
@@ -73,9 +73,6 @@ class FlapInversion {
   /// Drag without torque: the nominal θ1 = −θ3 = θ2 = −θ4 = θ, or the two-plate form above
   /// with a plate failed. θ is limited to max_angle_rad.
   FlapSolution dragOnly(double theta_rad) const;
-
-  /// [-] (c_ax, c_az) of the angles: the seed's sums.
-  static Eigen::Vector2d torques(const Eigen::Vector4d& theta_rad);
 
   /// [-] Σ |sin θi|³: the flaps' drag in units of 4ρ(S/2)V² (seed: drag coefficient 4|sin³θ|).
   static double dragShape(const Eigen::Vector4d& theta_rad);

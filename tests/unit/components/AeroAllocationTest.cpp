@@ -8,12 +8,14 @@
 #include <Eigen/Geometry>
 
 #include "components/unloading_controller/AeroAllocation.hpp"
+#include "sim/Flaps.hpp"
 
 using flatsat::unloading_controller::AeroAllocation;
 using flatsat::unloading_controller::AeroAllocationInput;
 using flatsat::unloading_controller::AeroAllocationParams;
 using flatsat::unloading_controller::AeroSplit;
 using flatsat::unloading_controller::FlapInversion;
+namespace sim = flatsat::sim;
 
 namespace {
 
@@ -51,7 +53,7 @@ TEST_CASE("S2 split: coils and flaps together give the demanded torque with the 
     const Eigen::Vector3d& B = in.b_B_T;
     const Eigen::Vector3d& C = in.c_demand_B_Nm;
     // The flaps' torque is what the plant's flap model gives for the commanded angles.
-    const Eigen::Vector2d c = FlapInversion::torques(out.flaps.theta_rad);
+    const Eigen::Vector2d c = sim::Flaps::normalisedTorques(out.flaps.theta_rad);
     const Eigen::Vector3d c_aero = kFlapScale_Nm * Eigen::Vector3d(c(0), 0.0, c(1));
     CHECK((out.m_B_Am2.cross(B) + c_aero - C).norm() < 1e-9 * C.norm());
     CHECK(std::abs(out.m_B_Am2.dot(B)) < 1e-12 * out.m_B_Am2.norm() * B.norm());  // M ⟂ B (eq. I)
