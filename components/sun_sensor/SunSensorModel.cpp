@@ -23,17 +23,17 @@ std::vector<std::string> SunSensorParams::validate() const {
           "must be in [0, 1]");
   if (kind != SunSensorKind::kCoarseCosine) return errors;
   const auto& cells = cell_normals_B;
-  require(errors, cells.size() >= 2 && cells.size() <= static_cast<std::size_t>(kMaxSunCells), "cell_normals_body",
+  require(errors, cells.size() >= 2 && cells.size() <= static_cast<std::size_t>(kMaxSunCells), "cells",
           "needs 2.." + std::to_string(kMaxSunCells) + " cells");
   bool paired = true;
   Eigen::Matrix3d spread = Eigen::Matrix3d::Zero();
   for (const auto& n : cells) {
-    requireUnit(errors, "cell_normals_body", n);
+    requireUnit(errors, "cells[].normal_body", n);
     paired = paired && std::any_of(cells.begin(), cells.end(), [&](const Eigen::Vector3d& m) { return (m + n).norm() < 1e-6; });
     spread += n * n.transpose();
   }
-  require(errors, paired, "cell_normals_body", "every cell needs one facing the opposite way (pairs)");
-  require(errors, Eigen::FullPivLU<Eigen::Matrix3d>(spread).rank() == 3, "cell_normals_body",
+  require(errors, paired, "cells", "every cell needs one facing the opposite way (pairs)");
+  require(errors, Eigen::FullPivLU<Eigen::Matrix3d>(spread).rank() == 3, "cells",
           "the cells' normals must span three dimensions");
   requireNonNegative(errors, "cell_noise", cell_noise);
   requirePositive(errors, "min_output", min_output);
@@ -74,17 +74,16 @@ SunSensorOutput SunSensorModel::coarse(const Input& in) {
   // The Earth stays lit while the spacecraft is in its shadow: albedo at the 1 AU flux
   // (the Sun's distance changes it by ±3.4 % over the year).
   const bool albedo = params_.albedo && norm > 0.0 && in.r_B_m.norm() > 0.0;
-  Eigen::VectorXd y(n);
   for (int i = 0; i < n; ++i) {
     const Eigen::Vector3d& cell = params_.cell_normals_B[static_cast<std::size_t>(i)];
     // Drawn for every cell on every call: the sequence does not depend on the geometry.
     const double noise = noise_.sample(params_.cell_noise);
     double value = in.flux_ratio * std::max(0.0, cell.dot(s));
     if (albedo) value += sim::albedoIrradiance(in.r_B_m, s, cell, *params_.albedo);
-    y(i) = value + noise;
-    out.cell_output[static_cast<std::size_t>(i)] = y(i);
+    out.cell_output[static_cast<std::size_t>(i)] = value + noise;
   }
-  const Eigen::Vector3d half = cell_pinv_ * y;  // f s / 2 for opposite pairs (see the header)
+  // f s / 2 for opposite pairs (see the header).
+  const Eigen::Vector3d half = cell_pinv_ * Eigen::Map<const Eigen::VectorXd>(out.cell_output.data(), n);
   if (!(2.0 * half.norm() >= params_.min_output)) return out;
   out.sun_B_unit = half.normalized();
   out.valid = true;
