@@ -76,17 +76,15 @@ void readMode(bus::ParamReader& r, const std::string& key, std::optional<Magneti
   if (!mode) r.problem(key, "'" + text + "' is not unload, detumble or spin_capture");
 }
 
-/// The `aero:` section (seed S2) and, with spacecraft.flaps fitted, what the split needs to know.
+/// The `aero:` section (seed S2) and what the split needs to know of the flaps.
 void readAero(bus::ParamReader& r, const sim::DynamicsParams& plant, UnloadingControllerNodeParams& node) {
-  if (plant.flaps.fitted) {
-    node.flaps = FlapKnowledge{plant.flaps.plate_area_m2, plant.flaps.lever_arm_m, plant.atmosphere,
-                               plant.density_kg_m3};
-  }
   if (!r.has("aero")) return;
   auto a = r.section("aero");
   if (!plant.flaps.fitted) {
     a.problem("split", "spacecraft.flaps is not fitted: no flaps to split the torque with");
   }
+  node.flaps = FlapKnowledge{plant.flaps.plate_area_m2, plant.flaps.lever_arm_m, plant.atmosphere,
+                             plant.density_kg_m3};
   AeroAllocationParams p;
   p.max_dipole_Am2 = node.modes.unload.max_dipole_Am2;
   p.min_field_T = node.modes.unload.min_field_T;

@@ -41,7 +41,7 @@ struct UnloadingControllerNodeParams {
   /// Onboard orbit and field model; set for kModelAttitude and when spin capture
   /// takes the field's turn from it.
   std::optional<estimator::ReferenceModelParams> onboard;
-  /// Set when spacecraft.flaps is fitted (modes.aero needs it and onboard for K).
+  /// Set with modes.aero (the `aero:` section), which needs it and onboard for K.
   std::optional<FlapKnowledge> flaps;
 };
 
