@@ -1,8 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "components/attitude_controller/AttitudeControllerNode.hpp"
 
-#include <spdlog/spdlog.h>
-
 #include "bus/Convert.hpp"
 #include "components/common/ReferenceParams.hpp"
 #include "sim/DynamicsServerParams.hpp"
