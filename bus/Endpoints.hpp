@@ -46,19 +46,16 @@ class Writer {
   Writer& operator=(const Writer&) = delete;
 
   void write(const Sample& sample) {
-    if (local_ != nullptr) {
-      local_->write(local_id_, sample);
-      return;
-    }
-    if (!writer_->write(const_cast<Sample*>(&sample))) {
-      throw std::runtime_error("write failed on topic " + name_);
-    }
-    last_ = sample;
+    writeOnce(sample);
+    if (write_again_ && write_again_(sample)) writeOnce(sample);
   }
+  /// Writes each sample for which `again` is true a second time (a bus
+  /// duplicate fault, bus/BusFaults.hpp).
+  void writeAgainWhen(std::function<bool(const Sample&)> again) { write_again_ = std::move(again); }
   /// Writes the last sample again (over DDS only: in-process delivery is
   /// never lost). Readers that hold it already drop the copy (bus::Input).
   void rewriteLast() {
-    if (local_ == nullptr && last_) write(*last_);
+    if (local_ == nullptr && last_) writeOnce(*last_);
   }
   int matchedReaders() const {
     if (local_ != nullptr) return local_->readers();
@@ -95,7 +92,19 @@ class Writer {
   const std::string& topicName() const { return name_; }
 
  private:
+  void writeOnce(const Sample& sample) {
+    if (local_ != nullptr) {
+      local_->write(local_id_, sample);
+      return;
+    }
+    if (!writer_->write(const_cast<Sample*>(&sample))) {
+      throw std::runtime_error("write failed on topic " + name_);
+    }
+    last_ = sample;
+  }
+
   std::string name_;
+  std::function<bool(const Sample&)> write_again_;
   std::optional<Sample> last_;  // for rewriteLast()
   eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
   eprosima::fastdds::dds::DataWriter* writer_ = nullptr;

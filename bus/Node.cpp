@@ -14,8 +14,37 @@ constexpr auto kPoll = std::chrono::milliseconds(100);  // shutdown-flag polling
 }
 
 Node::Node(Bus& bus, NodeOptions options)
-    : bus_(bus), options_(std::move(options)), health_(bus, topics::kHealth) {
+    : bus_(bus),
+      options_(std::move(options)),
+      health_(bus, topics::kHealth),
+      bus_faults_(options_.seed, std::chrono::nanoseconds(options_.period).count(), options_.bus_faults),
+      bus_fault_commands_(bus, topics::kFaultCmd, [this](const msg::FaultCmd& command) {
+        if (text(command.target()) != kBusFaultTarget) return;
+        BusFault fault;
+        const auto problems = busFaultFromCommand(command, fault);
+        if (problems.empty()) bus_faults_.add(fault);
+        if (CommandAcks* acks = bus_fault_acks_.load()) {
+          acks->queue(command.command_id(), "fault", problems.empty(),
+                      problems.empty() ? std::string(toString(fault.kind)) + " on " + fault.topic + " added"
+                                       : problems.front());
+        }
+      }) {
   publishHealth(msg::ComponentState::STARTING, 0, "entities created");
+}
+
+std::vector<std::string> busFaultFromCommand(const msg::FaultCmd& command, BusFault& fault) {
+  std::vector<std::string> problems;
+  const std::string kind = text(command.kind());
+  if (!parseBusFaultKind(kind, fault.kind)) {
+    problems.push_back("kind: '" + kind + "' is not one of " + kBusFaultKinds);
+  }
+  fault.topic = text(command.topic());
+  if (!isSteppedTopic(fault.topic)) problems.push_back("topic: '" + fault.topic + "' is not a stepped topic");
+  fault.magnitude = command.magnitude();
+  fault.start_ns = command.start_ns();
+  fault.duration_ns = command.duration_ns();
+  for (auto& p : fault.validate()) problems.push_back(std::move(p));
+  return problems;
 }
 
 Node::~Node() = default;
@@ -130,6 +159,9 @@ void Node::publishHealth(msg::ComponentState state, std::uint64_t steps_done,
           .count()));
   setText(health.message(), message);
   health.step_reached(step_reached_);
+  std::uint64_t copies = 0;
+  for (const auto& input : inputs_) copies += input->copiesDropped();
+  health.copies_dropped(copies);
   health_.write(health);
 }
 

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <condition_variable>
 #include <algorithm>
+#include <atomic>
 #include <functional>
 #include <cstdint>
 #include <map>
@@ -15,6 +16,8 @@
 #include <vector>
 
 #include "bus/Bus.hpp"
+#include "bus/BusFaults.hpp"
+#include "bus/CommandAcks.hpp"
 #include "bus/Endpoints.hpp"
 #include "bus/Stamp.hpp"
 #include "bus/Topics.hpp"
@@ -47,7 +50,12 @@ struct NodeOptions {
   std::chrono::nanoseconds period{100'000'000};   ///< [ns] base step period (paced waits)
   std::chrono::milliseconds peer_timeout{60000};  ///< [ms] for discovery
   std::chrono::milliseconds step_timeout{60000};  ///< [ms] for one step's data
+  std::uint64_t seed = 1;                         ///< [-] the scenario's: picks the samples bus faults hit
+  std::vector<BusFault> bus_faults;               ///< from the scenario; more arrive as FaultCmd
 };
+
+/// A FaultCmd addressed to the bus as a fault; every problem (empty: valid).
+std::vector<std::string> busFaultFromCommand(const msg::FaultCmd& command, BusFault& fault);
 
 /// Raised when a node gives up: the message names the topic and step.
 struct NodeFailure : std::runtime_error {
@@ -70,6 +78,8 @@ class InputBase {
   virtual void dropBefore(std::uint64_t k) = 0;
   virtual int matchedWriters() const = 0;
   virtual const std::string& topicName() const = 0;
+  /// Samples received again and passed on once (Health.copies_dropped).
+  virtual std::uint64_t copiesDropped() const = 0;
 };
 
 template <class Def>
@@ -82,9 +92,10 @@ class Input final : public InputBase {
 
   /// lag_steps 1: the sample due at step k is the producer's of step k − 1 (a feedback
   /// path: the producer consumes this node's output of the same step); nothing is due
-  /// at step 0.
-  Input(Node& node, const Def& def, std::uint32_t producer_divider, Observer observer = {},
-        std::uint32_t lag_steps = 0);
+  /// at step 0. `faults` null: a tap (the recorder), which waits for and passes on
+  /// every sample written; else the topic's bus faults decide which sample it holds.
+  Input(Node& node, const Def& def, std::uint32_t producer_divider, Observer observer,
+        std::uint32_t lag_steps, const BusFaultPlan* faults);
 
   /// The producer's newest sample due at or before step k. In lockstep the
   /// node waited for the one stamped k - k mod (producer divider); paced, it
@@ -92,23 +103,41 @@ class Input final : public InputBase {
   Sample at(std::uint64_t k) const;
   /// As at(k), but nothing (instead of a throw) when no sample is due yet.
   std::optional<Sample> atIfAny(std::uint64_t k) const;
+  /// As atIfAny(k), but only the sample due at step k: nothing when the input
+  /// holds an older one (paced and late, or a bus fault dropped or delayed
+  /// the due one). For a measurement that must not be used twice.
+  std::optional<Sample> dueAt(std::uint64_t k) const {
+    auto sample = atIfAny(k);
+    const std::uint64_t j = k - lag_;
+    if (sample && sample->header().step() != j - j % divider_) return std::nullopt;
+    return sample;
+  }
   bool has(std::uint64_t k) const override;
   bool hasAny(std::uint64_t k) const override;
   void dropBefore(std::uint64_t k) override;
   int matchedWriters() const override { return reader_.matchedWriters(); }
   const std::string& topicName() const override { return reader_.topicName(); }
+  std::uint64_t copiesDropped() const override {
+    std::lock_guard lock(mutex_);
+    return copies_dropped_;
+  }
 
  private:
   /// Whether anything is due at step k (a lagged input has nothing at step 0).
   bool due(std::uint64_t k) const { return k >= lag_; }
-  std::uint64_t stampFor(std::uint64_t k) const {
+  /// The stamp of the sample held at step k: the producer's due one, or under a
+  /// bus fault an older one (none: every sample so far dropped or late).
+  std::optional<std::uint64_t> stampFor(std::uint64_t k) const {
     const std::uint64_t j = k - lag_;
-    return j - j % divider_;
+    if (faults_ == nullptr) return j - j % divider_;
+    return faults_->visibleStamp(j, divider_);
   }
   Node& node_;
   std::uint32_t divider_;
   std::uint32_t lag_;
   Observer observer_;
+  const BusFaultPlan* faults_;
+  mutable std::uint64_t copies_dropped_ = 0;  // guarded by mutex_; counted by resent()
   /// A sample the producer wrote again (TimeMaster's resend after a stall)
   /// that this input holds already or has consumed: dropped, so observers
   /// (the recorder) see each sample once.
@@ -137,27 +166,30 @@ class Node {
 
  protected:
   template <class Def>
-  Input<Def>& addInput(const Def& def, typename Input<Def>::Observer observer = {}) {
-    auto input = std::make_unique<Input<Def>>(*this, def, dividerOf(std::string(def.producer)),
-                                              std::move(observer));
-    auto& ref = *input;
-    inputs_.push_back(std::move(input));
-    return ref;
+  Input<Def>& addInput(const Def& def) {
+    return emplaceInput(def, {}, 0, &bus_faults_.plan(std::string(def.name)));
+  }
+  /// An input that waits for and passes on every sample written, whatever
+  /// the bus faults (the recorder: it records what producers wrote).
+  template <class Def>
+  Input<Def>& addTap(const Def& def, typename Input<Def>::Observer observer) {
+    return emplaceInput(def, std::move(observer), 0, nullptr);
   }
   /// An input from a producer that consumes this node's output of the same step:
   /// at step k it holds the producer's sample of step k − 1.
   template <class Def>
   Input<Def>& addFeedbackInput(const Def& def) {
-    auto input = std::make_unique<Input<Def>>(*this, def, dividerOf(std::string(def.producer)),
-                                              typename Input<Def>::Observer{}, 1);
-    auto& ref = *input;
-    inputs_.push_back(std::move(input));
-    return ref;
+    return emplaceInput(def, {}, 1, &bus_faults_.plan(std::string(def.name)));
   }
   template <class Def>
   Writer<Def>& addOutput(const Def& def) {
     auto writer = std::make_unique<WriterHolder<Def>>(bus_, def);
     auto& ref = writer->writer;
+    if (def.qos == QosKind::kStepped) {
+      // A bus duplicate fault: the producer writes the sample twice (bus/BusFaults.hpp).
+      const BusFaultPlan& plan = bus_faults_.plan(std::string(def.name));
+      ref.writeAgainWhen([&plan](const typename Def::Type& sample) { return plan.duplicated(sample.header().step()); });
+    }
     outputs_.push_back(std::move(writer));
     return ref;
   }
@@ -225,9 +257,30 @@ class Node {
     void rewrite() override { writer.rewriteLast(); }
     Writer<Def> writer;
   };
+  template <class Def>
+  Input<Def>& emplaceInput(const Def& def, typename Input<Def>::Observer observer, std::uint32_t lag,
+                           const BusFaultPlan* faults) {
+    auto input = std::make_unique<Input<Def>>(*this, def, dividerOf(std::string(def.producer)),
+                                              std::move(observer), lag, faults);
+    auto& ref = *input;
+    inputs_.push_back(std::move(input));
+    return ref;
+  }
   std::vector<std::unique_ptr<InputBase>> inputs_;
   std::vector<std::unique_ptr<OutputBase>> outputs_;
   WriterOf<topics::kHealth> health_;
+
+ protected:
+  /// The bus faults this node's inputs and outputs apply: the scenario's,
+  /// then each valid FaultCmd addressed to the bus.
+  BusFaultTable bus_faults_;
+  /// From now on each FaultCmd addressed to the bus is acknowledged through
+  /// `acks` (the time master's: one answer per command in the rig).
+  void acknowledgeBusFaults(CommandAcks& acks) { bus_fault_acks_.store(&acks); }
+
+ private:
+  std::atomic<CommandAcks*> bus_fault_acks_{nullptr};
+  ReaderOf<topics::kFaultCmd> bus_fault_commands_;  // last: its callback uses the members above
 };
 
 /// The input type of a registry topic: InputOf<topics::kTruth>.
@@ -252,12 +305,14 @@ void Node::waitUntilNothingMissing(Missing&& missing, const std::string& what) {
 
 template <class Def>
 Input<Def>::Input(Node& node, const Def& def, std::uint32_t producer_divider, Observer observer,
-                  std::uint32_t lag_steps)
+                  std::uint32_t lag_steps, const BusFaultPlan* faults)
     : node_(node),
       divider_(producer_divider),
       lag_(lag_steps),
       observer_(std::move(observer)),
+      faults_(faults),
       reader_(node.bus_, def, [this](const Sample& sample) {
+        if (faults_ != nullptr && faults_->dropped(sample.header().step())) return;  // never reached this reader
         if (resent(sample)) return;
         if (observer_) observer_(sample);
         {
@@ -271,22 +326,27 @@ template <class Def>
 bool Input<Def>::resent(const Sample& sample) const {
   const std::uint64_t step = sample.header().step();
   std::lock_guard lock(mutex_);
-  if (!node_.paced() && step < consumed_before_) return true;
   const auto held = samples_.find(step);
-  return held != samples_.end() && text(held->second.header().source()) == text(sample.header().source());
+  const bool copy = (!node_.paced() && step < consumed_before_) ||
+                    (held != samples_.end() && text(held->second.header().source()) == text(sample.header().source()));
+  if (copy) ++copies_dropped_;
+  return copy;
 }
 
 template <class Def>
 typename Input<Def>::Sample Input<Def>::at(std::uint64_t k) const {
   if (auto sample = atIfAny(k)) return *sample;
-  throw NodeFailure("no sample on " + topicName() + " at or before step " + std::to_string(k));
+  throw NodeFailure("no sample on " + topicName() + " at or before step " + std::to_string(k) +
+                    (faults_ != nullptr && !faults_->empty() ? " (a bus fault dropped or delayed every one so far)" : ""));
 }
 
 template <class Def>
 std::optional<typename Input<Def>::Sample> Input<Def>::atIfAny(std::uint64_t k) const {
   if (!due(k)) return std::nullopt;
+  const auto stamp = stampFor(k);
+  if (!stamp) return std::nullopt;
   std::lock_guard lock(mutex_);
-  auto it = samples_.upper_bound(stampFor(k));
+  auto it = samples_.upper_bound(*stamp);
   if (it == samples_.begin()) return std::nullopt;
   return std::prev(it)->second;
 }
@@ -294,23 +354,28 @@ std::optional<typename Input<Def>::Sample> Input<Def>::atIfAny(std::uint64_t k) 
 template <class Def>
 bool Input<Def>::has(std::uint64_t k) const {
   if (!due(k)) return true;
+  const auto stamp = stampFor(k);
+  if (!stamp) return true;  // every sample so far dropped or late: nothing to wait for
   std::lock_guard lock(mutex_);
-  return samples_.count(stampFor(k)) != 0;
+  return samples_.count(*stamp) != 0;
 }
 
 template <class Def>
 bool Input<Def>::hasAny(std::uint64_t k) const {
   if (!due(k)) return true;
+  const auto stamp = stampFor(k);
   std::lock_guard lock(mutex_);
-  return !samples_.empty() && samples_.begin()->first <= stampFor(k);
+  return stamp && !samples_.empty() && samples_.begin()->first <= *stamp;
 }
 
 template <class Def>
 void Input<Def>::dropBefore(std::uint64_t k) {
   if (!due(k)) return;
+  const auto stamp = stampFor(k);
+  if (!stamp) return;
   std::lock_guard lock(mutex_);
-  consumed_before_ = std::max(consumed_before_, stampFor(k));
-  samples_.erase(samples_.begin(), samples_.lower_bound(stampFor(k)));
+  consumed_before_ = std::max(consumed_before_, *stamp);
+  samples_.erase(samples_.begin(), samples_.lower_bound(*stamp));
 }
 
 }  // namespace flatsat::bus

@@ -35,6 +35,8 @@ NodeOptions nodeOptions(const Scenario& scenario, const std::string& name) {
   options.schedule = scenario.schedule();
   options.pacing = scenario.pacing;
   options.period = std::chrono::nanoseconds(std::llround(scenario.step_s * 1e9));
+  options.seed = scenario.seed;
+  options.bus_faults = scenario.bus_faults;
   return options;
 }
 

@@ -150,6 +150,22 @@ std::uint64_t Recording::count(const std::string& topic) const {
   return sqlite3_step(s.stmt) == SQLITE_ROW ? static_cast<std::uint64_t>(sqlite3_column_int64(s.stmt, 0)) : 0;
 }
 
+std::optional<std::uint64_t> Recording::lastStep(const std::string& topic) const {
+  Statement s(db_, "SELECT MAX(step) FROM samples WHERE topic = ?", path_);
+  sqlite3_bind_text(s.stmt, 1, topic.c_str(), -1, SQLITE_TRANSIENT);
+  if (sqlite3_step(s.stmt) != SQLITE_ROW || sqlite3_column_type(s.stmt, 0) == SQLITE_NULL) return std::nullopt;
+  return static_cast<std::uint64_t>(sqlite3_column_int64(s.stmt, 0));
+}
+
+void Recording::eraseAfter(std::uint64_t step) {
+  Statement s(db_, "DELETE FROM samples WHERE step > ?", path_);
+  sqlite3_bind_int64(s.stmt, 1, static_cast<sqlite3_int64>(step));
+  if (sqlite3_step(s.stmt) != SQLITE_DONE) {
+    throw std::runtime_error(path_ + ": cannot erase the steps after " + std::to_string(step) + ": " +
+                             sqlite3_errmsg(db_));
+  }
+}
+
 std::string Recording::digest(const std::vector<std::string>& excluded) const {
   std::unique_ptr<EVP_MD_CTX, decltype(&EVP_MD_CTX_free)> ctx(EVP_MD_CTX_new(), EVP_MD_CTX_free);
   EVP_DigestInit_ex(ctx.get(), EVP_sha256(), nullptr);

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -43,6 +44,10 @@ class Recording {
                  const std::function<void(const std::string& source,
                                           const std::vector<std::uint8_t>& payload)>& visit) const;
   std::uint64_t count(const std::string& topic) const;
+  /// The highest step recorded on `topic`; nothing when it has no sample.
+  std::optional<std::uint64_t> lastStep(const std::string& topic) const;
+  /// Removes every sample stamped after `step` (a resumed run records them again).
+  void eraseAfter(std::uint64_t step);
   /// Every recorded topic with the sources that published it.
   std::map<std::string, std::set<std::string>> topicSources() const;
   /// SHA-256 (hex) over every sample of every topic except `excluded`, in

@@ -18,6 +18,13 @@ inline constexpr const char* kMode = "mode";                    // lockstep | pa
 inline constexpr const char* kLeaseMs = "liveliness_lease_ms";  // [ms]
 /// [-] only the stepped samples and grants of every Nth step are in (absent: every step)
 inline constexpr const char* kRecordEverySteps = "record_every_steps";
+/// [-] `flatsat run --resume`: steps up to this one are in the recording
+/// already; the recorder checks the resumed rig's samples of those steps
+/// against them instead of storing them again.
+inline constexpr const char* kResumeAfterStep = "resume_after_step";
+/// [-] written by a resumed recorder as it stops: samples of the steps up to
+/// kResumeAfterStep that differed from (or were missing in) the recording.
+inline constexpr const char* kResumeMismatches = "resume_mismatches";
 
 inline std::string formatSchedule(const Schedule& schedule) {
   std::string out;

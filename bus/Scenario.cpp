@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "bus/Scenario.hpp"
 
+#include <cmath>
 #include <filesystem>
 
 namespace flatsat::bus {
@@ -46,6 +47,34 @@ std::uint64_t Scenario::seedFor(const std::string& component) const {
   }
   return seed ^ hash;
 }
+
+namespace {
+
+std::vector<BusFault> readBusFaults(ParamReader& top) {
+  std::vector<BusFault> faults;
+  for (auto& entry : top.list("bus_faults")) {
+    BusFault fault;
+    std::string kind;
+    entry.read("kind", kind);
+    if (!parseBusFaultKind(kind, fault.kind)) {
+      entry.problem("kind", "'" + kind + "' is not one of " + kBusFaultKinds);
+    }
+    entry.read("topic", fault.topic);
+    if (!isSteppedTopic(fault.topic)) entry.problem("topic", "'" + fault.topic + "' is not a stepped topic");
+    entry.read("magnitude", fault.magnitude, fault.kind == BusFaultKind::kDelay ? "s" : "-");
+    double start_s = 0.0, duration_s = 0.0;
+    entry.read("start_s", start_s, "s");
+    entry.read("duration_s", duration_s, "s");
+    fault.start_ns = std::llround(start_s * 1e9);
+    fault.duration_ns = std::llround(duration_s * 1e9);
+    entry.problems(fault.validate());
+    entry.finish();
+    faults.push_back(fault);
+  }
+  return faults;
+}
+
+}  // namespace
 
 Scenario loadScenario(const std::string& path) {
   if (!std::filesystem::exists(path)) throw ScenarioError(path + ": no such file");
@@ -125,6 +154,7 @@ Scenario loadScenario(const std::string& path) {
     }
     scenario.components.push_back(component);
   }
+  scenario.bus_faults = readBusFaults(top);
   for (const auto& section : kPlantSections) top.section(section);
   top.finish();
   if (!problems.empty()) throw ScenarioError(path + ": invalid scenario:\n" + problems.joined());

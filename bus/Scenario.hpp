@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "bus/BusFaults.hpp"
 #include "bus/Node.hpp"
 #include "bus/Params.hpp"
 
@@ -47,6 +48,8 @@ struct Scenario {
   double acquisition_s = 0.0;      ///< [s] metrics ignore pointing before this
   double liveliness_lease_s = 1.0; ///< [s] paced: a silent producer is dead after this, 0.05..60
   std::vector<ComponentEntry> components;
+  /// `bus_faults:` samples of a topic dropped, delayed or duplicated (bus/BusFaults.hpp).
+  std::vector<BusFault> bus_faults;
 
   Schedule schedule() const;
   bool hasComponent(const std::string& name) const;

@@ -26,8 +26,11 @@ TimeMaster::TimeMaster(Bus& bus, NodeOptions options, Timing timing)
                        }
                        changed_.notify_all();
                      }),
-      grant_(bus, topics::kStepGrant) {
+      grant_(bus, topics::kStepGrant),
+      bus_fault_events_(bus, topics::kFaultEvent),
+      bus_fault_acks_(bus) {
   if (timing.period_ns <= 0) throw NodeFailure(name() + ": step period must be > 0");
+  acknowledgeBusFaults(bus_fault_acks_);
 }
 
 std::string TimeMaster::failedComponents() const {
@@ -135,8 +138,30 @@ void TimeMaster::start() {
   next_health_ = start_ + kHealthPeriod;
 }
 
+void TimeMaster::publishBusFaultEvents(const StepContext& ctx) {
+  bus_fault_acks_.publish(ctx, name());
+  for (const auto& [topic, plan] : bus_faults_.faulted()) {
+    const auto faults = plan->faults();
+    for (std::size_t i = 0; i < faults.size(); ++i) {
+      const bool now = faults[i].actsAt(ctx.sim_time_ns);
+      bool& before = bus_fault_active_[{topic, i}];
+      if (now == before) continue;
+      before = now;
+      msg::FaultEvent event;
+      event.header(makeHeader(ctx, std::string(kBusFaultTarget)));
+      setText(event.kind(), toString(faults[i].kind));
+      setText(event.topic(), topic);
+      event.channel(-1);
+      event.magnitude(faults[i].magnitude);
+      event.active(now);
+      bus_fault_events_.write(event);
+    }
+  }
+}
+
 void TimeMaster::beginStep(std::uint64_t k) {
   const StepContext ctx = context(k);
+  publishBusFaultEvents(ctx);
   publishStep(ctx);
   msg::StepGrant grant;
   grant.header(makeHeader(ctx, name()));

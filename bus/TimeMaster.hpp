@@ -3,6 +3,7 @@
 #include <map>
 #include <set>
 
+#include "bus/CommandAcks.hpp"
 #include "bus/Node.hpp"
 
 namespace flatsat::bus {
@@ -58,6 +59,9 @@ class TimeMaster : public Node {
   void onStall(std::uint64_t k) override { resendStep(k, " inputs of " + name()); }
   void waitForTick(std::chrono::steady_clock::time_point tick);
   std::string failedComponents() const;
+  /// The acknowledgements of bus faults commanded since the last step, and a
+  /// FaultEvent for each bus fault that began or stopped acting at step k.
+  void publishBusFaultEvents(const StepContext& ctx);
 
   StepContext context(std::uint64_t k) const {
     return {k, static_cast<std::int64_t>(k) * timing_.period_ns, timing_.period_ns};
@@ -72,6 +76,9 @@ class TimeMaster : public Node {
   ReaderOf<topics::kStepDone> done_reader_;
   ReaderOf<topics::kHealth> health_reader_;
   WriterOf<topics::kStepGrant> grant_;
+  WriterOf<topics::kFaultEvent> bus_fault_events_;
+  std::map<std::pair<std::string, std::size_t>, bool> bus_fault_active_;  // by topic and fault index
+  CommandAcks bus_fault_acks_;
 };
 
 }  // namespace flatsat::bus

@@ -69,6 +69,9 @@ inline constexpr TopicDef<FaultCmd, FaultCmdPubSubType> kFaultCmd{
     "flatsat/fault_cmd", QosKind::kCommand, ""};
 inline constexpr TopicDef<FaultEvent, FaultEventPubSubType> kFaultEvent{
     "flatsat/fault_event", QosKind::kCommand, ""};
+/// Not published: the recorder's rows of what readers held under a bus fault.
+inline constexpr TopicDef<BusDelivery, BusDeliveryPubSubType> kBusDelivery{
+    "flatsat/bus_delivery", QosKind::kCommand, "recorder"};
 inline constexpr TopicDef<ModeCmd, ModeCmdPubSubType> kUnloadingModeCmd{
     "flatsat/unloading_mode_cmd", QosKind::kCommand, ""};
 inline constexpr TopicDef<ParamCmd, ParamCmdPubSubType> kParamCmd{
@@ -86,7 +89,14 @@ void forEachTopic(F&& f) {
   f(kFaultCmd); f(kFaultEvent); f(kFieldEstimate); f(kCoilRequest); f(kCoilWindow);
   f(kThrusterCmd);
   f(kUnloadingModeCmd); f(kParamCmd); f(kCommandAck);
-  f(kStarTracker); f(kFlapCmd);
+  f(kStarTracker); f(kFlapCmd); f(kBusDelivery);
+}
+
+/// Whether `name` is a stepped topic of the registry (a bus fault's target).
+inline bool isSteppedTopic(std::string_view name) {
+  bool found = false;
+  forEachTopic([&](const auto& def) { found = found || (def.name == name && def.qos == QosKind::kStepped); });
+  return found;
 }
 
 }  // namespace flatsat::bus

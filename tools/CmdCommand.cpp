@@ -11,6 +11,7 @@
 #include <optional>
 #include <random>
 
+#include "bus/BusFaults.hpp"
 #include "bus/Endpoints.hpp"
 #include "bus/Stamp.hpp"
 #include "tools/ToolBus.hpp"
@@ -23,7 +24,7 @@ constexpr const char* kSender = "flatsat-cmd";  // header.source of every comman
 
 struct CmdOptions {
   std::string mode;
-  std::string target, kind, key;
+  std::string target, kind, key, topic;
   int channel = -1;
   double magnitude = 0.0, start_s = 0.0, duration_s = 0.0, value = 0.0;
   double timeout_s = 15.0;
@@ -151,28 +152,33 @@ CLI::App* addCmdCommand(CLI::App& app, int& exit_code) {
 
   auto* fault = cmd->add_subcommand("fault", "inject a sensor or actuator fault (architecture, \"Faults\")");
   fault->add_option("target", o->target,
-                    "sensor component (magnetometer, sun_sensor, gyro, ...), or dynamics_server "
-                    "for the actuators")
+                    "sensor component (magnetometer, sun_sensor, gyro, ...), dynamics_server "
+                    "for the actuators, or bus for a topic's samples (give --topic)")
       ->required();
   fault->add_option("kind", o->kind,
                     "sensors: stuck, bias, noise, spike, dropout, saturation; dynamics_server: "
-                    "wheel_failed, wheel_stuck, wheel_degraded, coil_open, thruster_failed")
+                    "wheel_failed, wheel_stuck, wheel_degraded, coil_open, thruster_failed; "
+                    "bus: drop, delay, duplicate")
       ->required();
+  fault->add_option("--topic", o->topic, "bus faults: the stepped topic, e.g. flatsat/magnetometer");
   fault->add_option("--channel", o->channel,
                     "measurement component (axis, wheel), or wheel, coil axis, thruster; -1 all (default)");
-  fault->add_option("--magnitude", o->magnitude,
+  auto* magnitude = fault->add_option("--magnitude", o->magnitude,
                     "bias, spike, noise 1 sigma or clip level, in the measurement's unit; "
-                    "wheel_degraded: the torque fraction left, 0..1");
+                    "wheel_degraded: the torque fraction left, 0..1; bus drop, duplicate: the fraction "
+                    "of samples hit, 0..1 (default 1: every one); bus delay: [s]");
   fault->add_option("--start-s", o->start_s, "[s] simulated time it begins (default 0: at once)")
       ->check(CLI::NonNegativeNumber);
   fault->add_option("--duration-s", o->duration_s, "[s] how long (default 0: for the rest of the run)")
       ->check(CLI::NonNegativeNumber);
   common(fault);
-  fault->callback([o, &exit_code] {
+  fault->callback([o, magnitude, &exit_code] {
+    if (o->target == bus::kBusFaultTarget && o->kind != "delay" && magnitude->count() == 0) o->magnitude = 1.0;
     guarded(exit_code, [&] {
       msg::FaultCmd command;
       bus::setText(command.target(), o->target);
       bus::setText(command.kind(), o->kind);
+      bus::setText(command.topic(), o->topic);
       command.channel(o->channel);
       command.magnitude(o->magnitude);
       command.start_ns(toNs(o->start_s));

@@ -98,7 +98,7 @@ class Replayer final : public bus::TimeMaster {
     for (const auto& topic : captured) {
       withTopic(topic, [&](const auto& def) {
         using Def = std::remove_cvref_t<decltype(def)>;
-        addInput(def, [this, name = std::string(def.name)](const typename Def::Type& sample) {
+        addTap(def, [this, name = std::string(def.name)](const typename Def::Type& sample) {
           std::lock_guard lock(capture_mutex_);
           capture_->insert(name, sample.header().step(), bus::text(sample.header().source()),
                            sample.header().sim_time_ns(), bus::serialize<Def>(sample));

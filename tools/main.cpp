@@ -36,6 +36,7 @@
 #include "tools/PlotCommand.hpp"
 #include "tools/RecordCommand.hpp"
 #include "tools/ReplayCommand.hpp"
+#include "tools/Resume.hpp"
 #include "tools/RunDirectory.hpp"
 #include "tools/ShmClean.hpp"
 #include "tools/StudyCommand.hpp"
@@ -79,6 +80,7 @@ struct RunOptions {
   bool json = false;
   bool plots = true;  // the review figures into <run>/plots (flatsat plot)
   bool composed = false;  // every component in this process, in-process bus (tools/Composed.hpp)
+  std::string resume;     // --resume DIR: a killed lockstep run goes on (tools/Resume.hpp)
 };
 
 /// `--prefix COMPONENT=COMMAND` into component -> argv words. `*` stands
@@ -127,11 +129,67 @@ bool enableSecurity(const std::string& dir, const bus::Scenario& scenario) {
   return true;
 }
 
+/// --resume DIR: DIR's own scenario, its recording readied (tools/Resume.hpp), its
+/// earlier logs kept aside. False (after saying why) when it cannot be resumed.
+bool prepareResumedRun(const RunOptions& o, const bus::Scenario& original, bus::Scenario& scenario) {
+  if (!o.out.empty() && fs::path(o.out) != fs::path(o.resume)) {
+    std::cerr << "error: --resume " << o.resume << ": the run goes on in that directory; drop --out\n";
+    return false;
+  }
+  if (!o.overrides.empty() || o.seed || !o.externals.empty()) {
+    std::cerr << "error: --resume " << o.resume << ": the run keeps its own " << o.resume
+              << "/scenario.yaml; --set, --seed and --external do not apply\n";
+    return false;
+  }
+  const std::string resolved = (fs::path(o.resume) / "scenario.yaml").string();
+  if (!fs::exists(resolved)) {
+    std::cerr << "error: --resume " << o.resume << ": no scenario.yaml: not a run directory\n";
+    return false;
+  }
+  if (!loadChecked(resolved, o.resume, scenario)) return false;
+  if (scenario.name != original.name) {
+    std::cerr << "error: --resume " << o.resume << ": it holds a run of '" << scenario.name << "', not of '"
+              << original.name << "' (" << o.scenario << ")\n";
+    return false;
+  }
+  const std::string recording = (fs::path(o.resume) / "recording.sqlite").string();
+  try {
+    const auto after = tools::prepareResume(scenario, recording);
+    if (!after) {
+      fs::remove(recording);
+      fs::remove(recording + "-wal");
+      fs::remove(recording + "-shm");
+    }
+    if (!o.quiet) {
+      std::cerr << "flatsat: resuming '" << scenario.name << "' in " << o.resume << ": "
+                << (after ? "steps 0.." + std::to_string(*after) + " are recorded; the rig computes them again, "
+                                                                    "checked against the recording, then goes on"
+                          : std::string("no complete step recorded; starting from step 0"))
+                << "\n";
+    }
+  } catch (const std::exception& e) {
+    std::cerr << "error: --resume " << o.resume << ": " << e.what() << "\n";
+    return false;
+  }
+  const fs::path logs = fs::path(o.resume) / "logs";
+  if (fs::exists(logs)) {
+    fs::path kept = fs::path(o.resume) / "logs-before-resume";
+    for (int n = 2; fs::exists(kept); ++n) kept = fs::path(o.resume) / ("logs-before-resume-" + std::to_string(n));
+    fs::rename(logs, kept);
+  }
+  return true;
+}
+
 int run(const RunOptions& o, nlohmann::ordered_json* summary_out = nullptr) {
   bus::Scenario original;
   if (!loadChecked(o.scenario, o.out, original)) return kExitBadInput;
-  const std::string run_dir = o.out.empty() ? tools::defaultRunDirectory(original.name) : o.out;
-  if (fs::exists(fs::path(run_dir) / "recording.sqlite")) {
+  const std::string run_dir = !o.resume.empty() ? o.resume
+                              : o.out.empty()   ? tools::defaultRunDirectory(original.name)
+                                                : o.out;
+  bus::Scenario scenario;
+  if (!o.resume.empty()) {
+    if (!prepareResumedRun(o, original, scenario)) return kExitBadInput;
+  } else if (fs::exists(fs::path(run_dir) / "recording.sqlite")) {
     std::cerr << "error: " << run_dir << " already holds a recording; choose another --out\n";
     return kExitBadInput;
   }
@@ -140,8 +198,7 @@ int run(const RunOptions& o, nlohmann::ordered_json* summary_out = nullptr) {
     return kExitBadInput;
   }
   const bool new_run_dir = !fs::exists(run_dir);
-  bus::Scenario scenario;
-  try {
+  if (o.resume.empty()) try {
     auto overrides = o.overrides;
     if (o.seed) overrides.push_back("seed=" + std::to_string(*o.seed));
     for (const auto& name : o.externals) {
@@ -199,6 +256,19 @@ int run(const RunOptions& o, nlohmann::ordered_json* summary_out = nullptr) {
     // start or `flatsat clean-shm` removes them.
     std::cerr << "error: " << result.failure << "\n";
     return kExitFailed;
+  }
+  if (!o.resume.empty()) {
+    try {
+      if (const auto differing = tools::resumeMismatches((fs::path(run_dir) / "recording.sqlite").string());
+          differing > 0) {
+        std::cerr << "error: --resume: " << differing << " samples of the recorded steps came out different "
+                  << "in the resumed rig (see " << run_dir << "/logs/recorder.log): the recording is not one run\n";
+        return kExitFailed;
+      }
+    } catch (const std::exception& e) {
+      std::cerr << "error: --resume: " << e.what() << "\n";
+      return kExitFailed;
+    }
   }
   nlohmann::ordered_json summary;
   try {
@@ -330,6 +400,8 @@ int main(int argc, char** argv) {
   run_cmd->add_flag("--json", run_options.json, "print the summary as JSON");
   run_cmd->add_flag("!--no-plots", run_options.plots,
                     "skip the review figures (default: flatsat plot into <run>/plots)");
+  run_cmd->add_option("--resume", run_options.resume,
+                      "go on with the killed lockstep run in this directory from its last complete step");
   run_cmd->add_flag("--composed", run_options.composed,
                     "every component in this one process on an in-process bus (no DDS), "
                     "scheduled in data-flow order: same recording, much faster; lockstep only");

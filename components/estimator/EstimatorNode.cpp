@@ -34,7 +34,7 @@ Vectors toVectors(const std::optional<msg::SunSensorReading>& sun,
   return v;
 }
 
-/// "ok", "lost" (samples arrive but are not usable: eclipse, dropout, saturation) or "none".
+/// "ok", "lost" (no usable sample this step: eclipse, dropout, saturation, late or lost on the bus) or "none".
 const char* sensorState(bool present, bool valid) {
   if (!present) return "none";
   return valid ? "ok" : "lost";
@@ -164,8 +164,10 @@ void EstimatorNode::stepS0(const bus::StepContext& ctx, const msg::GyroReading& 
 void EstimatorNode::step(const bus::StepContext& ctx) {
   std::optional<msg::SunSensorReading> sun;
   std::optional<msg::MagnetometerReading> magnetometer;
-  if (sun_ != nullptr) sun = sun_->at(ctx.step);
-  if (magnetometer_ != nullptr) magnetometer = magnetometer_->at(ctx.step);
+  // A measurement not of this step (lost or late on the bus, or paced and
+  // late) is no measurement: correcting with it again would count it twice.
+  if (sun_ != nullptr) sun = sun_->dueAt(ctx.step);
+  if (magnetometer_ != nullptr) magnetometer = magnetometer_->dueAt(ctx.step);
   const auto& gyro = last_gyro_.update(gyro_.at(ctx.step));
   const Vectors v = toVectors(sun, magnetometer);
   const ReferenceVectors reference = reference_.step(ctx.sim_time_ns);
@@ -197,9 +199,10 @@ void EstimatorNode::step(const bus::StepContext& ctx) {
     in.sun_N_ref_unit = reference.sun_N_unit;
     in.b_N_ref_T = reference.b_N_T;
     if (star_tracker_ != nullptr) {
-      const auto& star = star_tracker_->at(ctx.step);
-      in.q_NB_star = bus::quat(star.q_inertial_body()).normalized();
-      in.star_valid = star.valid() && in.q_NB_star.coeffs().allFinite();
+      if (const auto star = star_tracker_->dueAt(ctx.step)) {
+        in.q_NB_star = bus::quat(star->q_inertial_body()).normalized();
+        in.star_valid = star->valid() && in.q_NB_star.coeffs().allFinite();
+      }
       star_valid_ = in.star_valid;
     }
     const MekfOutput out = mekf_->step(in, ctx.sim_time_ns);
@@ -221,8 +224,8 @@ void EstimatorNode::step(const bus::StepContext& ctx) {
 
   std::string status = std::string(mekf_ ? "mekf" : "mahony") +
                        ": gyro " + sensorState(true, gyro_.at(ctx.step).valid()) +
-                       ", sun " + sensorState(sun.has_value(), v.sun_valid) +
-                       ", magnetometer " + sensorState(magnetometer.has_value(), v.b_valid);
+                       ", sun " + sensorState(sun_ != nullptr, v.sun_valid) +
+                       ", magnetometer " + sensorState(magnetometer_ != nullptr, v.b_valid);
   if (star_tracker_ != nullptr) status += std::string(", star tracker ") + sensorState(true, star_valid_);
   if (!message.valid()) status += ", estimate INVALID";
   setStatus(status);

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <filesystem>
 
+#include <spdlog/spdlog.h>
+
 #include "bus/RecordingMeta.hpp"
 #include "bus/Serialization.hpp"
 
@@ -50,6 +52,28 @@ RecorderNode::RecorderNode(bus::Bus& bus, bus::NodeOptions options, const Record
               bus::serialize<std::remove_cvref_t<decltype(bus::topics::kStepGrant)>>(grant));
       });
   for (const auto& [key, value] : params.meta) recording_.setMeta(key, value);
+  if (const auto after = recording_.meta(bus::meta::kResumeAfterStep); !after.empty()) {
+    resume_after_ = std::stoull(after);
+    spdlog::info("{}: resuming: the samples of steps 0..{} are checked against the recording, not stored again",
+                 name(), *resume_after_);
+  }
+}
+
+bool RecorderNode::recordedAlready(const std::string& topic, const msg::SampleHeader& header,
+                                   const std::vector<std::uint8_t>& payload) {
+  if (!resume_after_ || header.step() > *resume_after_) return false;
+  if (topic == bus::topics::kHealth.name) return true;  // wall-clock data: never the same twice
+  bool same = false;
+  recording_.forEachAt(topic, header.step(), [&](const std::string& source, const std::vector<std::uint8_t>& stored) {
+    same = same || (source == bus::text(header.source()) && stored == payload);
+  });
+  if (same) {
+    ++resume_checked_;
+  } else if (++resume_mismatches_ <= 5) {
+    spdlog::warn("{}: resuming: {} of {} at step {} differs from the recording", name(), topic,
+                 bus::text(header.source()), header.step());
+  }
+  return true;
 }
 
 template <class Def>
@@ -63,6 +87,7 @@ std::unique_ptr<bus::Reader<Def>> RecorderNode::recordAsItComes(bus::Bus& bus, c
 void RecorderNode::store(const std::string& topic, const msg::SampleHeader& header,
                          const std::vector<std::uint8_t>& payload) {
   std::lock_guard lock(recording_mutex_);
+  if (recordedAlready(topic, header, payload)) return;
   recording_.insert(topic, header.step(), bus::text(header.source()), header.sim_time_ns(),
                     payload);
 }
@@ -71,13 +96,34 @@ template <class Def>
 void RecorderNode::record(const Def& def) {
   // Samples are stored as they arrive; in lockstep the input's wait for step
   // k then guarantees they are all in before StepDone(k).
-  addInput(def, [this, topic = std::string(def.name)](const typename Def::Type& sample) {
+  addTap(def, [this, topic = std::string(def.name)](const typename Def::Type& sample) {
     if (!recorded(sample.header().step())) return;
     store(topic, sample.header(), bus::serialize<Def>(sample));
   });
+  producer_dividers_[std::string(def.name)] = dividerOf(std::string(def.producer));
+}
+
+void RecorderNode::recordDeliveries(const bus::StepContext& ctx) {
+  for (const auto& [topic, plan] : bus_faults_.faulted()) {
+    const auto divider = producer_dividers_.find(topic);
+    if (divider == producer_dividers_.end()) continue;  // its producer is not in this rig
+    const std::uint64_t due = ctx.step - ctx.step % divider->second;
+    const auto held = plan->visibleStamp(ctx.step, divider->second);
+    if (!plan->actsAt(due) && held == due) continue;
+    msg::BusDelivery row;
+    row.header(bus::makeHeader(ctx, name()));
+    bus::setText(row.topic(), topic);
+    row.sample_step(held ? static_cast<std::int64_t>(*held) : -1);
+    row.dropped(plan->dropped(due));
+    row.delay_steps(static_cast<std::uint32_t>(plan->delaySteps(due)));
+    row.duplicated(plan->duplicated(due));
+    store(std::string(bus::topics::kBusDelivery.name), row.header(),
+          bus::serialize<std::remove_cvref_t<decltype(bus::topics::kBusDelivery)>>(row));
+  }
 }
 
 void RecorderNode::step(const bus::StepContext& ctx) {
+  if (recorded(ctx.step)) recordDeliveries(ctx);
   if ((ctx.step + 1) % params_.commit_every_steps != 0) return;
   std::lock_guard lock(recording_mutex_);
   recording_.commit();
@@ -85,6 +131,11 @@ void RecorderNode::step(const bus::StepContext& ctx) {
 
 void RecorderNode::beforeStopped() {
   std::lock_guard lock(recording_mutex_);
+  if (resume_after_) {
+    recording_.setMeta(bus::meta::kResumeMismatches, std::to_string(resume_mismatches_));
+    spdlog::info("{}: resumed after step {}: {} samples of the steps before matched the recording, {} did not",
+                 name(), *resume_after_, resume_checked_, resume_mismatches_);
+  }
   recording_.commit();
 }
 

@@ -46,6 +46,13 @@ class RecorderNode final : public bus::Component {
   std::unique_ptr<bus::Reader<Def>> recordAsItComes(bus::Bus& bus, const Def& def);
   void store(const std::string& topic, const msg::SampleHeader& header,
              const std::vector<std::uint8_t>& payload);
+  /// Resuming (bus::meta::kResumeAfterStep): a sample of a step the recording
+  /// holds already is compared with it (counted), not stored. The caller holds recording_mutex_.
+  bool recordedAlready(const std::string& topic, const msg::SampleHeader& header,
+                       const std::vector<std::uint8_t>& payload);
+  /// Under bus faults (bus/BusFaults.hpp): which sample the consuming readers
+  /// of each faulted topic hold at this step (flatsat/bus_delivery rows).
+  void recordDeliveries(const bus::StepContext& ctx);
   /// Whether a stepped sample or grant stamped `step` goes into the recording.
   bool recorded(std::uint64_t step) const { return step % params_.record_every_steps == 0; }
 
@@ -60,6 +67,9 @@ class RecorderNode final : public bus::Component {
   std::unique_ptr<bus::ReaderOf<bus::topics::kCommandAck>> acks_;
   std::unique_ptr<bus::ReaderOf<bus::topics::kStepGrant>> grants_;
   std::optional<std::uint64_t> last_grant_;  // on the grant reader's thread only
+  std::map<std::string, std::uint32_t> producer_dividers_;  // of every recorded stepped topic
+  std::optional<std::uint64_t> resume_after_;  // --resume: steps the recording holds already
+  std::uint64_t resume_checked_ = 0, resume_mismatches_ = 0;
 };
 
 /// components.<name>; the file goes to the run directory (--out).

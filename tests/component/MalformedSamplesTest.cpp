@@ -71,14 +71,15 @@ TEST_CASE("samples that do not decode are dropped and counted, the node runs on"
 
   // Topics the node reads (one reader each on its participant) and topics
   // the script reads (step_done: one reader; health: the time master's and
-  // health_watch).
+  // health_watch). fault_cmd has two on the node (its sensor faults' and its
+  // bus faults') and the script's bus faults'.
   std::vector<std::unique_ptr<test::RogueWriter>> rogues;
   rogues.push_back(std::make_unique<test::RogueWriter>(rogue_bus, bus::topics::kTruth));
   rogues.push_back(std::make_unique<test::RogueWriter>(rogue_bus, bus::topics::kStepGrant));
   rogues.push_back(std::make_unique<test::RogueWriter>(rogue_bus, bus::topics::kFaultCmd));
   rogues.push_back(std::make_unique<test::RogueWriter>(rogue_bus, bus::topics::kStepDone));
   rogues.push_back(std::make_unique<test::RogueWriter>(rogue_bus, bus::topics::kHealth));
-  const std::vector<int> readers = {1, 1, 1, 1, 2};
+  const std::vector<int> readers = {1, 1, 3, 1, 2};
   const auto payloads = test::malformedPayloads();
   for (std::size_t i = 0; i < rogues.size(); ++i) {
     INFO(rogues[i]->topicName());
@@ -91,8 +92,8 @@ TEST_CASE("samples that do not decode are dropped and counted, the node runs on"
     }
   }
   const auto n = static_cast<std::uint64_t>(payloads.size());
-  CHECK(node_bus.samplesDropped() == 3 * n);
-  CHECK(script_bus.samplesDropped() == 3 * n);
+  CHECK(node_bus.samplesDropped() == 4 * n);    // truth, step_grant, fault_cmd twice
+  CHECK(script_bus.samplesDropped() == 4 * n);  // step_done, health twice, fault_cmd
 
   std::thread node_thread([&] { node.run(); });
   script.run();
@@ -104,10 +105,11 @@ TEST_CASE("samples that do not decode are dropped and counted, the node runs on"
     CHECK(reading.valid());
     CHECK((bus::vec3(reading.b_body_T()) - fieldAt(k)).norm() < 1e-15);
   }
-  // The node's own health says how many it dropped.
+  // The node's own health says how many it dropped: each of its 4 readers
+  // of truth, step_grant and fault_cmd (2) dropped every one.
   std::lock_guard lock(health_mutex);
   CHECK(last_node_health.state() == msg::ComponentState::STOPPED);
-  CHECK(last_node_health.samples_dropped() == 3 * n);
+  CHECK(last_node_health.samples_dropped() == 4 * n);
 }
 
 TEST_CASE("the generated deserialiser throws on a bad encapsulation, the bus's type does not",

@@ -31,7 +31,7 @@ class Consumer final : public bus::Node {
 
  private:
   bus::InputOf<bus::topics::kMagnetometer>& reading_ =
-      addInput(bus::topics::kMagnetometer, [this](const msg::MagnetometerReading&) { ++observed; });
+      addTap(bus::topics::kMagnetometer, [this](const msg::MagnetometerReading&) { ++observed; });
 };
 
 }  // namespace

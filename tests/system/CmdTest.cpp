@@ -36,6 +36,8 @@ TEST_CASE("cmd sends mode, fault and parameter commands that the components ackn
       {"mode", "mode detumble"},
       {"fault", "fault gyro bias --channel 0 --magnitude 1e-4"},
       {"actuator_fault", "fault dynamics_server coil_open --channel 2"},
+      {"bus_fault", "fault bus drop --topic flatsat/sun_sensor"},
+      {"bad_bus_fault", "fault bus delay --topic flatsat/health --magnitude 0.5"},
       {"param", "param attitude_controller kp_Nm_per_rad 1.5"},
       {"bad_param", "param attitude_controller kp_Nm_per_rad -1"}};
   std::map<std::string, std::unique_ptr<test::Background>> running;
@@ -51,7 +53,7 @@ TEST_CASE("cmd sends mode, fault and parameter commands that the components ackn
   }
   for (const auto& [name, result] : results) {
     CAPTURE(name, result.second);
-    CHECK(result.first == (name == "bad_param" ? 3 : 0));
+    CHECK(result.first == (name.rfind("bad_", 0) == 0 ? 3 : 0));
   }
   CHECK(results["mode"].second.find("accepted by unloading_controller") != std::string::npos);
   CHECK(results["fault"].second.find("accepted by gyro") != std::string::npos);
@@ -59,21 +61,28 @@ TEST_CASE("cmd sends mode, fault and parameter commands that the components ackn
   CHECK(results["param"].second.find("accepted by attitude_controller") != std::string::npos);
   CHECK(results["bad_param"].second.find("refused by attitude_controller") != std::string::npos);
   CHECK(results["bad_param"].second.find("kp_Nm_per_rad") != std::string::npos);
+  // The bus is answered by the time master (the dynamics server).
+  CHECK(results["bus_fault"].second.find("accepted by dynamics_server") != std::string::npos);
+  CHECK(results["bad_bus_fault"].second.find("refused by dynamics_server") != std::string::npos);
+  CHECK(results["bad_bus_fault"].second.find("'flatsat/health' is not a stepped topic") != std::string::npos);
 
   INFO(test::readFile(run + ".log"));
   REQUIRE(rig.wait(90) == 0);
   nlohmann::json summary;
   std::ifstream(fs::path(run) / "summary.json") >> summary;
-  CHECK(summary["commands_refused"] == 1);  // the negative gain, counted in the controller's health
+  // The negative gain, counted in the controller's health, and the bus fault on an
+  // unstepped topic, counted in the dynamics server's.
+  CHECK(summary["commands_refused"] == 2);
   const fs::path out = fs::path(run) / "export";
   const auto exporting = test::runCommand(
       test::kFlatsat + " export " + run + "/recording.sqlite --json -o " + out.string() +
-      " -t command_ack -t unloading_mode_cmd -t fault_cmd -t param_cmd -t dipole_cmd -t fault_event -t truth");
+      " -t command_ack -t unloading_mode_cmd -t fault_cmd -t param_cmd -t dipole_cmd -t fault_event -t truth"
+      " -t bus_delivery -t attitude_estimate");
   INFO(exporting.output);
   REQUIRE(exporting.exit_code == 0);
 
   CHECK(exported(out, "unloading_mode_cmd").size() == 1);
-  CHECK(exported(out, "fault_cmd").size() == 2);
+  CHECK(exported(out, "fault_cmd").size() == 4);
   CHECK(exported(out, "param_cmd").size() == 2);
   std::map<std::string, std::vector<nlohmann::json>> acks;  // by component
   for (const auto& ack : exported(out, "command_ack")) {
@@ -81,8 +90,15 @@ TEST_CASE("cmd sends mode, fault and parameter commands that the components ackn
   }
   REQUIRE(acks["unloading_controller"].size() == 1);
   REQUIRE(acks["gyro"].size() == 1);
-  REQUIRE(acks["dynamics_server"].size() == 1);
-  CHECK(acks["dynamics_server"][0]["accepted"] == true);
+  REQUIRE(acks["dynamics_server"].size() == 3);  // the coil, the bus fault, the refused bus fault
+  std::map<std::string, nlohmann::json> server_acks;  // by reason's first word
+  for (const auto& ack : acks["dynamics_server"]) {
+    const auto reason = ack["reason"].get<std::string>();
+    server_acks[reason.substr(0, reason.find(' '))] = ack;
+  }
+  CHECK(server_acks["coil_open"]["accepted"] == true);
+  CHECK(server_acks["drop"]["accepted"] == true);
+  CHECK(server_acks["topic:"]["accepted"] == false);
   REQUIRE(acks["attitude_controller"].size() == 2);
   CHECK(acks["unloading_controller"][0]["accepted"] == true);
   CHECK(acks["gyro"][0]["accepted"] == true);
@@ -112,7 +128,7 @@ TEST_CASE("cmd sends mode, fault and parameter commands that the components ackn
   CHECK(fault_began);
   // The open coil: from the acknowledged step on, the plant applies no dipole
   // on z whatever the controller commands (truth k + 1 holds step k's dipole).
-  const auto coil_step = acks["dynamics_server"][0]["header"]["step"].get<std::uint64_t>();
+  const auto coil_step = server_acks["coil_open"]["header"]["step"].get<std::uint64_t>();
   std::size_t commanded_z = 0, applied_z = 0;
   for (const auto& dipole : exported(out, "dipole_cmd")) {
     commanded_z += dipole["header"]["step"].get<std::uint64_t>() >= coil_step &&
@@ -124,6 +140,21 @@ TEST_CASE("cmd sends mode, fault and parameter commands that the components ackn
   }
   CHECK(commanded_z > 0);
   CHECK(applied_z == 0);
+  // The lost Sun samples: the bus's FaultEvent, the recorder's deliveries, and
+  // no Sun correction in the estimator's last steps (every sample from the
+  // command on is lost, paced readers take it from when it reaches them).
+  bool bus_fault_began = false;
+  for (const auto& event : exported(out, "fault_event")) {
+    bus_fault_began |= event["header"]["source"] == "bus" && event["kind"] == "drop" &&
+                       event["topic"] == "flatsat/sun_sensor" && event["active"] == true;
+  }
+  CHECK(bus_fault_began);
+  std::size_t lost_sun = 0;
+  for (const auto& row : exported(out, "bus_delivery")) lost_sun += row["topic"] == "flatsat/sun_sensor" && row["dropped"] == true;
+  CHECK(lost_sun > 20);
+  const auto estimates = exported(out, "attitude_estimate");
+  REQUIRE(estimates.size() > 20);
+  for (std::size_t i = estimates.size() - 20; i < estimates.size(); ++i) CHECK(estimates[i]["sun_used"] == false);
   fs::remove_all(run);
   fs::remove(run + ".log");
 }

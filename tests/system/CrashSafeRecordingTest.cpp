@@ -3,8 +3,9 @@
 // the dynamics server) in the middle of a lockstep run. The recording still
 // opens and exports; every step up to the last committed one is complete and
 // each of its samples is byte-identical to the same sample of an
-// uninterrupted run of the scenario. The recording is read here with SQLite
-// directly, not through the project's Recording class.
+// uninterrupted run of the scenario. `flatsat run --resume` then completes
+// it into exactly the uninterrupted run's recording. The recording is read
+// here with SQLite directly, not through the project's Recording class.
 #include <signal.h>
 #include <sqlite3.h>
 
@@ -90,7 +91,7 @@ std::string readFile(const std::string& path) {
 
 }  // namespace
 
-TEST_CASE("SIGKILL of the recorder or the dynamics server leaves a readable recording",
+TEST_CASE("SIGKILL of the recorder or the dynamics server leaves a readable recording, and --resume completes it",
           "[system][crash]") {
   test::exportTestDomain();
   const std::string reference_dir = test::freshDir("crash-reference");
@@ -163,9 +164,51 @@ TEST_CASE("SIGKILL of the recorder or the dynamics server leaves a readable reco
       std::uint64_t rows = 0;
       for (std::string line; std::getline(csv, line);) ++rows;
       CHECK(rows == 1 + truthCount(crashed));  // header + one row per truth sample
+
+      // `--resume` goes on from the last complete step and ends with the
+      // uninterrupted run's recording, bit for bit (after the recorder's
+      // death composed: the rig is the same either way).
+      const auto resumed = test::runCommand(test::kFlatsat + " run " + kDefault + " --no-plots --resume " + out +
+                                            (victim == "recorder" ? " --composed" : ""));
+      INFO(resumed.output);
+      REQUIRE(resumed.exit_code == 0);
+      CHECK(resumed.output.find("steps 0.." + std::to_string(steps - 1) + " are recorded") != std::string::npos);
+      CHECK(test::readSummary(out)["recording_sha256"] == test::readSummary(reference_dir)["recording_sha256"]);
+      CHECK(readSamples(recording) == reference);
+      CHECK(fs::exists(fs::path(out) / "logs-before-resume"));
       fs::remove_all(out);
       fs::remove(out + ".log");
     }
   }
   fs::remove_all(reference_dir);
+}
+
+TEST_CASE("flatsat run --resume refuses, with the reason, what it cannot continue as one run", "[system][crash]") {
+  test::exportTestDomain();
+  const std::string out = test::freshDir("resume-refused");
+  const auto first = test::runCommand(test::kFlatsat + " run " + kDefault + " --composed -q --no-plots --out " + out +
+                                      " --set duration_orbits=null --set duration_s=5");
+  REQUIRE(first.exit_code == 0);
+  const auto resume = [&](const std::string& extra) {
+    return test::runCommand(test::kFlatsat + " run " + kDefault + " -q --no-plots --resume " + out + " " + extra);
+  };
+  const auto with_set = resume("--set seed=3");
+  CHECK(with_set.exit_code == 2);
+  CHECK(with_set.output.find("--set, --seed and --external do not apply") != std::string::npos);
+  const auto other = test::runCommand(test::kFlatsat + " run " + std::string(FLATSAT_SCENARIO_DIR) +
+                                      "/mekf.yaml -q --no-plots --resume " + out);
+  CHECK(other.exit_code == 2);
+  CHECK(other.output.find("holds a run of 'default', not of 'mekf'") != std::string::npos);
+
+  // An operator command in the recording: given at a wall-clock moment, it cannot be repeated.
+  sqlite3* db = nullptr;
+  REQUIRE(sqlite3_open((out + "/recording.sqlite").c_str(), &db) == SQLITE_OK);
+  REQUIRE(sqlite3_exec(db, "INSERT INTO samples VALUES ('flatsat/fault_cmd', 3, 'flatsat-cmd', 0, x'00')", nullptr,
+                       nullptr, nullptr) == SQLITE_OK);
+  sqlite3_close(db);
+  const auto commanded = resume("");
+  INFO(commanded.output);
+  CHECK(commanded.exit_code == 2);
+  CHECK(commanded.output.find("holds 1 operator command(s)") != std::string::npos);
+  fs::remove_all(out);
 }

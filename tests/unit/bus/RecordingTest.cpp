@@ -44,3 +44,26 @@ TEST_CASE("Recording visits a topic in step order or in arrival order", "[record
   std::filesystem::remove(path.string() + "-wal");
   std::filesystem::remove(path.string() + "-shm");
 }
+
+TEST_CASE("Recording finds a topic's last step and erases what came after a step", "[recording]") {
+  const auto path = std::filesystem::temp_directory_path() /
+                    ("flatsat-recording-erase-" + std::to_string(::getpid()) + ".sqlite");
+  std::filesystem::remove(path);
+  {
+    Recording r(path.string(), Recording::Access::kCreate);
+    for (std::uint64_t step = 0; step < 10; ++step) r.insert("a", step, "x", 0, {1});
+    for (std::uint64_t step = 0; step < 10; step += 5) r.insert("b", step, "y", 0, {2});
+    CHECK(r.lastStep("a") == 9u);
+    CHECK(r.lastStep("b") == 5u);
+    CHECK_FALSE(r.lastStep("c").has_value());
+    r.eraseAfter(6);
+    r.commit();
+  }
+  const Recording r(path.string(), Recording::Access::kRead);
+  CHECK(r.count("a") == 7);  // steps 0..6
+  CHECK(r.count("b") == 2);
+  CHECK(r.lastStep("a") == 6u);
+  std::filesystem::remove(path);
+  std::filesystem::remove(path.string() + "-wal");
+  std::filesystem::remove(path.string() + "-shm");
+}
