@@ -2,6 +2,8 @@
 #pragma once
 #include <chrono>
 #include <functional>
+#include <map>
+#include <mutex>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -16,6 +18,7 @@
 #include "bus/GuardedType.hpp"
 #include "bus/LocalHub.hpp"
 #include "bus/Qos.hpp"
+#include "bus/Stamp.hpp"
 
 namespace flatsat::bus {
 
@@ -90,6 +93,10 @@ class Writer {
            ReturnCode_t::RETCODE_OK;
   }
   const std::string& topicName() const { return name_; }
+  /// Tells readers this writer is alive (MANUAL_BY_TOPIC liveliness; in-process: nothing to tell).
+  void assertLiveliness() {
+    if (local_ == nullptr) writer_->assert_liveliness();
+  }
 
  private:
   void writeOnce(const Sample& sample) {
@@ -122,8 +129,13 @@ class Reader : private eprosima::fastdds::dds::DataReaderListener {
   using Sample = typename Def::Type;
   using Callback = std::function<void(const Sample&)>;
 
-  Reader(Bus& bus, const Def& def, Callback on_sample)
-      : name_(def.name), on_sample_(std::move(on_sample)) {
+  /// Called (on a Fast DDS thread) when a writer's liveliness is lost or
+  /// regained, with the header.source of that writer's samples; writers that
+  /// never delivered a sample are not reported.
+  using LivelinessCallback = std::function<void(const std::string& source, bool alive)>;
+
+  Reader(Bus& bus, const Def& def, Callback on_sample, LivelinessCallback on_liveliness = {})
+      : name_(def.name), on_sample_(std::move(on_sample)), on_liveliness_(std::move(on_liveliness)) {
     if (LocalHub* hub = bus.localHub()) {
       local_ = &hub->channel(def);
       local_id_ = local_->addReader(&on_sample_);
@@ -159,12 +171,33 @@ class Reader : private eprosima::fastdds::dds::DataReaderListener {
     Sample sample;
     eprosima::fastdds::dds::SampleInfo info;
     while (reader->take_next_sample(&sample, &info) == ReturnCode_t::RETCODE_OK) {
-      if (info.valid_data) on_sample_(sample);
+      if (!info.valid_data) continue;
+      if (on_liveliness_) {
+        std::lock_guard lock(sources_mutex_);
+        sources_[info.publication_handle] = text(sample.header().source());
+      }
+      on_sample_(sample);
     }
+  }
+  void on_liveliness_changed(eprosima::fastdds::dds::DataReader*,
+                             const eprosima::fastdds::dds::LivelinessChangedStatus& status) override {
+    if (!on_liveliness_) return;
+    std::string source;
+    {
+      std::lock_guard lock(sources_mutex_);
+      const auto it = sources_.find(status.last_publication_handle);
+      if (it == sources_.end()) return;
+      source = it->second;
+    }
+    if (status.not_alive_count_change > 0) on_liveliness_(source, false);
+    if (status.alive_count_change > 0) on_liveliness_(source, true);
   }
 
   std::string name_;
   Callback on_sample_;
+  LivelinessCallback on_liveliness_;
+  std::mutex sources_mutex_;
+  std::map<eprosima::fastdds::dds::InstanceHandle_t, std::string> sources_;  // writer -> header.source
   eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;
   eprosima::fastdds::dds::DataReader* reader_ = nullptr;
   LocalChannel<Def>* local_ = nullptr;

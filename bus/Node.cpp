@@ -17,6 +17,15 @@ Node::Node(Bus& bus, NodeOptions options)
     : bus_(bus),
       options_(std::move(options)),
       health_(bus, topics::kHealth),
+      liveliness_([this](std::stop_token stop) {
+        std::mutex mutex;
+        std::condition_variable_any wake;
+        std::unique_lock lock(mutex);
+        while (!stop.stop_requested()) {
+          health_.assertLiveliness();
+          wake.wait_for(lock, stop, kHealthLease / 3, [] { return false; });
+        }
+      }),
       bus_faults_(options_.seed, std::chrono::nanoseconds(options_.period).count(), options_.bus_faults),
       bus_fault_commands_(bus, topics::kFaultCmd, [this](const msg::FaultCmd& command) {
         if (text(command.target()) != kBusFaultTarget) return;

@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include <string>
 #include <iterator>
+#include <thread>
 #include <vector>
 
 #include "bus/Bus.hpp"
@@ -269,6 +270,9 @@ class Node {
   std::vector<std::unique_ptr<InputBase>> inputs_;
   std::vector<std::unique_ptr<OutputBase>> outputs_;
   WriterOf<topics::kHealth> health_;
+  /// Asserts the health writer's liveliness every third of kHealthLease while the
+  /// process lives, whatever its step thread does (waits, long steps).
+  std::jthread liveliness_;
 
  protected:
   /// The bus faults this node's inputs and outputs apply: the scenario's,

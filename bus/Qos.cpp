@@ -32,11 +32,18 @@ void stepped(Qos& qos, const QosTuning& tuning) {
   qos.liveliness().lease_duration = duration(tuning.lease);
 }
 
+template <class Qos>
+void state(Qos& qos) {
+  qos.liveliness().kind = dds::MANUAL_BY_TOPIC_LIVELINESS_QOS;
+  qos.liveliness().lease_duration = duration(kHealthLease);
+}
+
 }  // namespace
 
 dds::DataWriterQos writerQos(QosKind kind, const QosTuning& tuning) {
   dds::DataWriterQos qos;
   common(qos, kind == QosKind::kState ? 1 : kSteppedDepth);
+  if (kind == QosKind::kState) state(qos);
   if (kind == QosKind::kStepped) {
     stepped(qos, tuning);
     qos.ownership_strength().value = static_cast<uint32_t>(tuning.ownership_strength);
@@ -47,6 +54,7 @@ dds::DataWriterQos writerQos(QosKind kind, const QosTuning& tuning) {
 dds::DataReaderQos readerQos(QosKind kind, const QosTuning& tuning) {
   dds::DataReaderQos qos;
   common(qos, kind == QosKind::kState ? kStateReaderDepth : kSteppedDepth);
+  if (kind == QosKind::kState) state(qos);
   if (kind == QosKind::kStepped) stepped(qos, tuning);
   return qos;
 }

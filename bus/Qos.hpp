@@ -42,6 +42,12 @@ struct QosTuning {
   std::int32_t ownership_strength = 10;   ///< [-] emulators 10, hardware bridges 100
 };
 
+/// Liveliness lease of the health topic: every node asserts it from a thread
+/// of its own every third of it (Node), so a reader learns within the lease
+/// that a component's process is gone (MANUAL_BY_TOPIC: with AUTOMATIC a
+/// killed writer would stay alive for the 20 s participant lease).
+inline constexpr std::chrono::milliseconds kHealthLease{3000};
+
 inline constexpr std::int32_t kEmulatorStrength = 10;
 inline constexpr std::int32_t kBridgeStrength = 100;
 

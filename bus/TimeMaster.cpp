@@ -25,7 +25,8 @@ TimeMaster::TimeMaster(Bus& bus, NodeOptions options, Timing timing)
                          messages_[source] = text(health.message());
                        }
                        changed_.notify_all();
-                     }),
+                     },
+                     [this](const std::string& source, bool alive) { livelinessChanged(source, alive); }),
       grant_(bus, topics::kStepGrant),
       bus_fault_events_(bus, topics::kFaultEvent),
       bus_fault_acks_(bus) {
@@ -38,9 +39,32 @@ std::string TimeMaster::failedComponents() const {
   for (const auto& [component, state] : states_) {
     if (state == msg::ComponentState::FAILED) {
       failed += " " + component + " (" + messages_.at(component) + ")";
+    } else if (lost_.count(component) != 0) {
+      failed += " " + component + " (no liveliness for " + std::to_string(kHealthLease.count()) +
+                " ms: its process is gone)";
     }
   }
   return failed;
+}
+
+void TimeMaster::livelinessChanged(const std::string& component, bool alive) {
+  {
+    std::lock_guard lock(mutex_);
+    const auto state = states_.find(component);
+    const bool ended = state != states_.end() && (state->second == msg::ComponentState::STOPPED ||
+                                                  state->second == msg::ComponentState::FAILED);
+    if (component == name() || (!alive && ended) || (alive == (lost_.count(component) == 0))) return;
+    if (alive) {
+      lost_.erase(component);
+      spdlog::info("{}: {} is alive again", name(), component);
+    } else {
+      lost_.insert(component);
+      spdlog::warn("{}: {} lost its liveliness ({} ms without a sign of life)", name(), component,
+                   kHealthLease.count());
+    }
+    liveliness_events_.emplace_back(component, !alive);
+  }
+  changed_.notify_all();
 }
 
 void TimeMaster::waitForComponents() {
@@ -138,8 +162,22 @@ void TimeMaster::start() {
   next_health_ = start_ + kHealthPeriod;
 }
 
-void TimeMaster::publishBusFaultEvents(const StepContext& ctx) {
+void TimeMaster::publishFaultEvents(const StepContext& ctx) {
   bus_fault_acks_.publish(ctx, name());
+  std::vector<std::pair<std::string, bool>> liveliness;
+  {
+    std::lock_guard lock(mutex_);
+    liveliness.swap(liveliness_events_);
+  }
+  for (const auto& [component, lost] : liveliness) {
+    msg::FaultEvent event;
+    event.header(makeHeader(ctx, component));
+    setText(event.kind(), "lost");
+    setText(event.topic(), topics::kHealth.name);
+    event.channel(-1);
+    event.active(lost);
+    bus_fault_events_.write(event);
+  }
   for (const auto& [topic, plan] : bus_faults_.faulted()) {
     const auto faults = plan->faults();
     for (std::size_t i = 0; i < faults.size(); ++i) {
@@ -161,7 +199,7 @@ void TimeMaster::publishBusFaultEvents(const StepContext& ctx) {
 
 void TimeMaster::beginStep(std::uint64_t k) {
   const StepContext ctx = context(k);
-  publishBusFaultEvents(ctx);
+  publishFaultEvents(ctx);
   publishStep(ctx);
   msg::StepGrant grant;
   grant.header(makeHeader(ctx, name()));

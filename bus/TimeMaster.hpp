@@ -2,6 +2,8 @@
 #pragma once
 #include <map>
 #include <set>
+#include <utility>
+#include <vector>
 
 #include "bus/CommandAcks.hpp"
 #include "bus/Node.hpp"
@@ -59,9 +61,13 @@ class TimeMaster : public Node {
   void onStall(std::uint64_t k) override { resendStep(k, " inputs of " + name()); }
   void waitForTick(std::chrono::steady_clock::time_point tick);
   std::string failedComponents() const;
-  /// The acknowledgements of bus faults commanded since the last step, and a
-  /// FaultEvent for each bus fault that began or stopped acting at step k.
-  void publishBusFaultEvents(const StepContext& ctx);
+  /// The acknowledgements of bus faults commanded since the last step, a
+  /// FaultEvent for each bus fault that began or stopped acting at step k, and
+  /// one (kind "lost", from the component) for each liveliness lost or regained.
+  void publishFaultEvents(const StepContext& ctx);
+  /// A component's health writer lost or regained its liveliness (kHealthLease):
+  /// lost, a lockstep run stops naming it; paced runs go on and record it.
+  void livelinessChanged(const std::string& component, bool alive);
 
   StepContext context(std::uint64_t k) const {
     return {k, static_cast<std::int64_t>(k) * timing_.period_ns, timing_.period_ns};
@@ -73,6 +79,8 @@ class TimeMaster : public Node {
   std::map<std::uint64_t, std::set<std::string>> done_;
   std::map<std::string, msg::ComponentState> states_;
   std::map<std::string, std::string> messages_;
+  std::set<std::string> lost_;  // components whose liveliness is lost
+  std::vector<std::pair<std::string, bool>> liveliness_events_;  // (component, lost) to publish
   ReaderOf<topics::kStepDone> done_reader_;
   ReaderOf<topics::kHealth> health_reader_;
   WriterOf<topics::kStepGrant> grant_;

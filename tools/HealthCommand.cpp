@@ -81,10 +81,7 @@ int health(const HealthOptions& o) {
   ToolBus tool_bus("health", o.domain);
   std::mutex mutex;
   std::map<std::string, HealthEntry> entries;  // by component (header.source)
-  Tap<HealthDef> tap(tool_bus, bus::topics::kHealth, [&](const msg::Health& h, const Arrival& a) {
-    std::lock_guard lock(mutex);
-    entries[bus::text(h.header().source())] = {h, a.writer};
-  });
+  HealthTap tap(tool_bus, mutex, entries);
   const auto snapshot = [&] {
     std::lock_guard lock(mutex);
     return healthTable(entries, tool_bus);

@@ -37,6 +37,20 @@ double ageSeconds(const msg::Health& h) {
 
 }  // namespace
 
+HealthTap::HealthTap(ToolBus& tool_bus, std::mutex& mutex, std::map<std::string, HealthEntry>& entries)
+    : tap_(
+          tool_bus, bus::topics::kHealth,
+          [&mutex, &entries](const msg::Health& h, const Arrival& a) {
+            std::lock_guard lock(mutex);
+            entries[bus::text(h.header().source())] = {h, a.writer, true};
+          },
+          [&mutex, &entries](const Guid& writer, bool alive) {  // a killed component shows within bus::kHealthLease
+            std::lock_guard lock(mutex);
+            for (auto& [name, entry] : entries) {
+              if (entry.writer == writer) entry.writer_alive = alive;
+            }
+          }) {}
+
 nlohmann::ordered_json healthTable(const std::map<std::string, HealthEntry>& entries, const ToolBus& tool_bus) {
   const auto participants = tool_bus.participants();
   // Lag: steps behind the component furthest ahead (the time master grants first).
@@ -54,7 +68,7 @@ nlohmann::ordered_json healthTable(const std::map<std::string, HealthEntry>& ent
                     {"samples_dropped", e.health.samples_dropped()},
                     {"commands_refused", e.health.commands_refused()},
                     {"age_s", ageSeconds(e.health)},
-                    {"alive", p != participants.end() && p->second.alive},
+                    {"alive", e.writer_alive && p != participants.end() && p->second.alive},
                     {"message", bus::text(e.health.message())}});
   }
   return rows;

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #pragma once
 #include <map>
+#include <mutex>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -15,11 +16,22 @@ using HealthDef = std::remove_cvref_t<decltype(bus::topics::kHealth)>;
 struct HealthEntry {
   msg::Health health;
   Guid writer;
+  bool writer_alive = true;  ///< false: its health writer's liveliness lapsed (bus::kHealthLease)
 };
 
 /// One row per component: state, steps done, lag (steps behind the component furthest
 /// ahead, at their last health), overruns (deadline misses), stale inputs, drops, refusals,
 /// age of the last health, alive, message (`flatsat health --json`, the web view).
+/// Each component's newest health into `entries` (under `mutex`) as it
+/// arrives, its writer marked dead when its liveliness lapses.
+class HealthTap {
+ public:
+  HealthTap(ToolBus& tool_bus, std::mutex& mutex, std::map<std::string, HealthEntry>& entries);
+
+ private:
+  Tap<HealthDef> tap_;
+};
+
 nlohmann::ordered_json healthTable(const std::map<std::string, HealthEntry>& entries, const ToolBus& tool_bus);
 
 }  // namespace flatsat::tools

@@ -92,17 +92,27 @@ class Externals {
  public:
   Externals(bus::Bus& bus, const bus::Scenario& scenario, Clock::time_point start)
       : start_(start),
+        paced_(scenario.pacing == bus::Pacing::kPaced),
         waiting_(named(scenario, false)),
         unfinished_(named(scenario, true)),
-        reader_(bus, bus::topics::kHealth, [this](const msg::Health& health) { receive(health); }) {}
+        reader_(
+            bus, bus::topics::kHealth, [this](const msg::Health& health) { receive(health); },
+            [this](const std::string& source, bool alive) {
+              if (!alive) lost(source);
+            }) {}
 
-  /// Logs the joins since the last call.
+  /// Logs the joins and losses since the last call.
   void report() {
     std::lock_guard lock(mutex_);
     for (const auto& name : fresh_) {
       spdlog::info("external {} joined the bus {:.2f} s after launch", name, joined_[name]);
     }
     fresh_.clear();
+    for (const auto& name : gone_) {
+      spdlog::warn("external {} lost its liveliness ({} ms without a sign of life); the paced run goes on",
+                   name, bus::kHealthLease.count());
+    }
+    gone_.clear();
   }
   std::map<std::string, double> joined() {
     std::lock_guard lock(mutex_);
@@ -160,7 +170,23 @@ class Externals {
     }
   }
 
+  /// An external component's process is gone: lockstep cannot go on without
+  /// it; paced goes on and no longer waits for it to finish.
+  void lost(const std::string& source) {
+    std::lock_guard lock(mutex_);
+    if (unfinished_.count(source) == 0) return;
+    if (paced_) {
+      unfinished_.erase(source);
+      gone_.push_back(source);
+    } else if (failure_.empty()) {
+      failure_ = "external component '" + source + "' lost its liveliness (" +
+                 std::to_string(bus::kHealthLease.count()) + " ms without a sign of life: its process is gone)";
+    }
+  }
+
   Clock::time_point start_;
+  bool paced_;
+  std::vector<std::string> gone_;  // paced: lost, not yet logged
   std::mutex mutex_;
   std::set<std::string> waiting_;     // not seen yet
   std::set<std::string> unfinished_;  // stepped, not STOPPED or FAILED yet

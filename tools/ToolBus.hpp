@@ -118,9 +118,12 @@ class Tap : private eprosima::fastdds::dds::DataReaderListener {
  public:
   using Sample = typename Def::Type;
   using Callback = std::function<void(const Sample&, const Arrival&)>;
+  /// A writer's liveliness lost (false) or regained (true), on a Fast DDS thread.
+  using LivelinessCallback = std::function<void(const Guid& writer, bool alive)>;
 
-  Tap(ToolBus& tool_bus, const Def& def, Callback on_sample)
+  Tap(ToolBus& tool_bus, const Def& def, Callback on_sample, LivelinessCallback on_liveliness = {})
       : on_sample_(std::move(on_sample)),
+        on_liveliness_(std::move(on_liveliness)),
         subscriber_(tool_bus.bus().subscriber()),
         subscribed_ns_(std::chrono::duration_cast<std::chrono::nanoseconds>(
                            std::chrono::system_clock::now().time_since_epoch())
@@ -151,7 +154,17 @@ class Tap : private eprosima::fastdds::dds::DataReaderListener {
     }
   }
 
+  void on_liveliness_changed(eprosima::fastdds::dds::DataReader*,
+                             const eprosima::fastdds::dds::LivelinessChangedStatus& status) override {
+    if (!on_liveliness_) return;
+    Guid writer;
+    eprosima::fastrtps::rtps::iHandle2GUID(writer, status.last_publication_handle);
+    if (status.not_alive_count_change > 0) on_liveliness_(writer, false);
+    if (status.alive_count_change > 0) on_liveliness_(writer, true);
+  }
+
   Callback on_sample_;
+  LivelinessCallback on_liveliness_;
   eprosima::fastdds::dds::Subscriber& subscriber_;
   std::int64_t subscribed_ns_;  ///< [ns] system clock, as the writers' source timestamps
   eprosima::fastdds::dds::DataReader* reader_ = nullptr;

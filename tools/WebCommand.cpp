@@ -98,11 +98,7 @@ class LiveState {
  public:
   explicit LiveState(ToolBus& tool_bus)
       : tool_bus_(tool_bus),
-        health_(tool_bus, bus::topics::kHealth,
-                [this](const msg::Health& h, const Arrival& a) {
-                  std::lock_guard lock(mutex_);
-                  entries_[bus::text(h.header().source())] = {h, a.writer};
-                }),
+        health_(tool_bus, mutex_, entries_),
         truth_(tool_bus, bus::topics::kTruth, [this](const msg::TruthState& t, const Arrival&) {
           std::lock_guard lock(mutex_);
           const double t_s = static_cast<double>(t.header().sim_time_ns()) * 1e-9;
@@ -140,7 +136,7 @@ class LiveState {
   mutable std::mutex mutex_;
   std::map<std::string, HealthEntry> entries_;
   std::deque<Point> points_;
-  Tap<HealthDef> health_;
+  HealthTap health_;
   Tap<TruthDef> truth_;
 };
 

@@ -54,6 +54,10 @@ class Background {
     }
     return -1;
   }
+  /// Sends `sig` to the command (it was exec'd: the shell is gone).
+  void signal(int sig) {
+    if (pid_ > 0) ::kill(pid_, sig);
+  }
   bool running() {
     int status = 0;
     if (pid_ > 0 && ::waitpid(pid_, &status, WNOHANG) == pid_) pid_ = -1;
