@@ -131,7 +131,8 @@ class Reader : private eprosima::fastdds::dds::DataReaderListener {
 
   /// Called (on a Fast DDS thread) when a writer's liveliness is lost or
   /// regained, with the header.source of that writer's samples; writers that
-  /// never delivered a sample are not reported.
+  /// never delivered a sample are not reported, nor the loss of one whose
+  /// source has another writer that delivered since (a restarted process).
   using LivelinessCallback = std::function<void(const std::string& source, bool alive)>;
 
   Reader(Bus& bus, const Def& def, Callback on_sample, LivelinessCallback on_liveliness = {})
@@ -183,13 +184,18 @@ class Reader : private eprosima::fastdds::dds::DataReaderListener {
                              const eprosima::fastdds::dds::LivelinessChangedStatus& status) override {
     if (!on_liveliness_) return;
     std::string source;
+    bool another_writer = false;  // of the same source: a restarted process that came back first
     {
       std::lock_guard lock(sources_mutex_);
       const auto it = sources_.find(status.last_publication_handle);
       if (it == sources_.end()) return;
       source = it->second;
+      if (status.not_alive_count_change > 0) {
+        sources_.erase(it);
+        for (const auto& [handle, other] : sources_) another_writer |= other == source;
+      }
     }
-    if (status.not_alive_count_change > 0) on_liveliness_(source, false);
+    if (status.not_alive_count_change > 0 && !another_writer) on_liveliness_(source, false);
     if (status.alive_count_change > 0) on_liveliness_(source, true);
   }
 

@@ -200,6 +200,7 @@ class Node {
   void waitForProducers();
   /// Waits (polling, woken by any input) until `missing()` returns an empty
   /// string; on timeout or shutdown throws NodeFailure with `what` and it.
+  /// `missing` runs without mutex_: it takes it itself for the node's state.
   template <class Missing>
   void waitUntilNothingMissing(Missing&& missing, const std::string& what);
   /// Whether every input holds its sample for step k (lockstep's condition), without waiting.
@@ -294,8 +295,11 @@ using InputOf = Input<std::remove_cvref_t<decltype(Topic)>>;
 template <class Missing>
 void Node::waitUntilNothingMissing(Missing&& missing, const std::string& what) {
   const auto deadline = std::chrono::steady_clock::now() + options_.peer_timeout;
-  std::unique_lock lock(mutex_);
   for (;;) {
+    // Asked without the node's lock: `missing` asks Fast DDS for matched
+    // counts, and Fast DDS holds a reader's lock while that reader's sample
+    // callback takes the node's lock (notify()), as when this node joins a
+    // rig that is running already (a restart).
     const std::string left = missing();
     if (left.empty()) return;
     if (interrupted()) throw NodeFailure(options_.name + ": interrupted while " + what);
@@ -303,6 +307,7 @@ void Node::waitUntilNothingMissing(Missing&& missing, const std::string& what) {
       throw NodeFailure(options_.name + ": " + what + " for " +
                         std::to_string(options_.peer_timeout.count()) + " ms; missing:" + left);
     }
+    std::unique_lock lock(mutex_);
     changed_.wait_for(lock, std::chrono::milliseconds(100));
   }
 }

@@ -23,6 +23,13 @@ TimeMaster::TimeMaster(Bus& bus, NodeOptions options, Timing timing)
                          const auto source = text(health.header().source());
                          states_[source] = health.state();
                          messages_[source] = text(health.message());
+                         // A lost component starting again (restarted): its new writer is alive.
+                         if ((health.state() == msg::ComponentState::STARTING ||
+                              health.state() == msg::ComponentState::READY) &&
+                             lost_.erase(source) > 0) {
+                           spdlog::info("{}: {} is back", name(), source);
+                           liveliness_events_.emplace_back(source, false);
+                         }
                        }
                        changed_.notify_all();
                      },
@@ -70,6 +77,7 @@ void TimeMaster::livelinessChanged(const std::string& component, bool alive) {
 void TimeMaster::waitForComponents() {
   waitUntilNothingMissing(
       [this] {
+        std::lock_guard lock(mutex_);
         if (auto failed = failedComponents(); !failed.empty()) {
           throw NodeFailure(name() + ": component failed before the start:" + failed);
         }

@@ -215,20 +215,42 @@ LaunchResult launch(const bus::Scenario& scenario, const LaunchOptions& options)
   Externals externals(bus, scenario, start);
   std::vector<Child> children;
   std::vector<const bus::ComponentEntry*> late;  // bridges that start after a delay
-  const auto startChild = [&](const bus::ComponentEntry& component) {
-    const auto* kind = findComponentKind(component.name);
-    Child child{component.name, -1, true, (logs / (component.name + ".log")).string(),
-                component.scheduled};
+  const auto spawn = [&](Child& child) {
+    const auto* kind = findComponentKind(child.name);
     std::vector<std::string> argv;
-    if (auto it = options.prefixes.find(component.name); it != options.prefixes.end()) {
+    if (auto it = options.prefixes.find(child.name); it != options.prefixes.end()) {
       argv = it->second;
     }
     argv.insert(argv.end(), {(fs::path(options.bin_dir) / kind->executable).string(), "--scenario",
-                             options.scenario_file, "--name", component.name, "--out",
+                             options.scenario_file, "--name", child.name, "--out",
                              options.run_dir, "--log", options.log_level});
     child.pid = spawnLogged(argv, child.log);
-    spdlog::debug("started {} (pid {})", component.name, child.pid);
+    child.running = true;
+    spdlog::debug("started {} (pid {})", child.name, child.pid);
+  };
+  const auto startChild = [&](const bus::ComponentEntry& component) {
+    Child child{component.name, -1, true, (logs / (component.name + ".log")).string(),
+                component.scheduled};
+    spawn(child);
     children.push_back(child);
+  };
+  // --restart: the time master owns simulated time and cannot come back mid-run.
+  const bool may_restart = options.restart && scenario.pacing == bus::Pacing::kPaced;
+  bus::WriterOf<bus::topics::kFaultEvent> restart_events(bus, bus::topics::kFaultEvent);
+  const auto restartChild = [&](Child& c, int status) {
+    const int n = ++result.restarts[c.name];
+    spdlog::warn("{} died ({}); starting it again ({} of at most {})", c.name, describeExit(status), n, kMaxRestarts);
+    msg::FaultEvent event;
+    const std::uint64_t step = progress.steps();
+    event.header(bus::makeHeader({step, static_cast<std::int64_t>(step) * std::llround(scenario.step_s * 1e9), 0},
+                                 c.name));
+    bus::setText(event.kind(), "restarted");
+    event.channel(-1);
+    event.magnitude(n);
+    event.active(true);
+    restart_events.write(event);
+    c.log = (logs / (c.name + ".restart-" + std::to_string(n) + ".log")).string();
+    spawn(c);
   };
   for (const auto& component : scenario.components) {
     if (!component.launched) {
@@ -250,6 +272,10 @@ LaunchResult launch(const bus::Scenario& scenario, const LaunchOptions& options)
     return n;
   };
   const auto rigRunning = [&] { return steppedRunning() > 0 || externals.running() > 0; };
+  const auto rigStopping = [&] {  // the time master is gone: the run is over
+    return std::none_of(children.begin(), children.end(),
+                        [](const Child& c) { return c.name == "dynamics_server" && c.running; });
+  };
   while (rigRunning()) {
     for (auto it = late.begin(); it != late.end();) {
       if (Clock::now() - start >= std::chrono::duration<double>((*it)->start_after_s)) {
@@ -269,7 +295,13 @@ LaunchResult launch(const bus::Scenario& scenario, const LaunchOptions& options)
         spdlog::warn("bridge {} exited ({}); the emulator takes over", c.name, describeExit(status));
         continue;
       }
-      if (!(WIFEXITED(status) && WEXITSTATUS(status) == 0) && result.failure.empty()) {
+      const bool died = !(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+      if (died && may_restart && c.name != "dynamics_server" && !rigStopping() &&
+          result.restarts[c.name] < kMaxRestarts) {
+        restartChild(c, status);
+        continue;
+      }
+      if (died && result.failure.empty()) {
         result.failure = "component '" + c.name + "' died (" + describeExit(status) +
                          "); last lines of " + c.log + ":\n" + tail(c.log, 8);
       }

@@ -27,7 +27,13 @@ struct LaunchOptions {
   /// component -> command its executable runs under (e.g. `ip netns exec fs-a`,
   /// `ssh box`): the argv words put before the executable and its arguments
   std::map<std::string, std::vector<std::string>> prefixes;
+  /// Paced runs: a component that dies (not the dynamics server) is started
+  /// again, up to kMaxRestarts times; each restart is recorded as a FaultEvent
+  /// (kind "restarted", from the component) and logged to logs/<name>.restart-N.log.
+  bool restart = false;
 };
+
+inline constexpr int kMaxRestarts = 20;  ///< [-] per component and run
 
 struct LaunchResult {
   bool ok = false;
@@ -40,6 +46,8 @@ struct LaunchResult {
   TickJitter tick_jitter;       ///< paced runs: the grants' arrival jitter at the launcher
   /// [s] for each external component, wall time from the launch to its first health sample
   std::map<std::string, double> external_joined_s;
+  /// --restart: how often each component was started again
+  std::map<std::string, int> restarts;
 };
 
 /// Starts one process per scenario component, shows progress, and waits

@@ -184,6 +184,7 @@ nlohmann::ordered_json summarize(const bus::Scenario& scenario, const std::strin
   s["roles"] = roles;
   // [s] from the launch to each external component's first health sample.
   s["external_joined_s"] = launch.external_joined_s;
+  if (!launch.restarts.empty()) s["restarts"] = launch.restarts;
   s["stale_inputs"] = stale;
   s["overruns"] = overruns;
   // Received samples that did not decode, as each component's last recorded

@@ -81,6 +81,7 @@ struct RunOptions {
   bool plots = true;  // the review figures into <run>/plots (flatsat plot)
   bool composed = false;  // every component in this process, in-process bus (tools/Composed.hpp)
   std::string resume;     // --resume DIR: a killed lockstep run goes on (tools/Resume.hpp)
+  bool restart = false;   // --restart: paced, a component that dies is started again
 };
 
 /// `--prefix COMPONENT=COMMAND` into component -> argv words. `*` stands
@@ -230,6 +231,12 @@ int run(const RunOptions& o, nlohmann::ordered_json* summary_out = nullptr) {
   tools::LaunchOptions launch_options{bin_dir, run_dir, fs::absolute(scenario.file).string(),
                                       o.log_level, !o.quiet};
   if (!parsePrefixes(o.prefixes, scenario, launch_options.prefixes)) return kExitBadInput;
+  if (o.restart && (scenario.pacing != bus::Pacing::kPaced || o.composed)) {
+    std::cerr << "error: --restart: only a paced multi-process run starts a dead component again "
+                 "(a lockstep run stops; continue it with --resume)\n";
+    return kExitBadInput;
+  }
+  launch_options.restart = o.restart;
   if (!o.secure.empty() && !enableSecurity(o.secure, scenario)) return kExitBadInput;
   if (o.composed && !o.quiet) {
     std::cerr << "flatsat: running '" << scenario.name << "' composed (" << scenario.components.size()
@@ -400,6 +407,8 @@ int main(int argc, char** argv) {
   run_cmd->add_flag("--json", run_options.json, "print the summary as JSON");
   run_cmd->add_flag("!--no-plots", run_options.plots,
                     "skip the review figures (default: flatsat plot into <run>/plots)");
+  run_cmd->add_flag("--restart", run_options.restart,
+                    "paced: start a component that dies again (not the dynamics server), recorded");
   run_cmd->add_option("--resume", run_options.resume,
                       "go on with the killed lockstep run in this directory from its last complete step");
   run_cmd->add_flag("--composed", run_options.composed,

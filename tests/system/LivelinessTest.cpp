@@ -119,3 +119,50 @@ TEST_CASE("paced: a component killed mid-run is shown dead within the lease and 
   fs::remove(out + "-tach.log");
   fs::remove(out + "-health.log");
 }
+
+TEST_CASE("paced --restart: a killed component is started again, rejoins, and the restart is recorded",
+          "[system][liveliness][paced]") {
+  test::exportTestDomain();
+  const std::string out = test::freshDir("restart");
+  test::Background rig(test::kFlatsat + " run " + kDefault + " -q --no-plots --restart --out " + out +
+                           " --set mode=paced --set duration_orbits=null --set duration_s=20",
+                       out + ".log");
+  REQUIRE(test::waitForText(fs::path(out) / "logs" / "dynamics_server.log", "every component ready", 60, rig));
+  std::this_thread::sleep_for(std::chrono::seconds(4));
+  REQUIRE(test::runCommand("pkill -KILL -f 'flatsat-gyr[o] --scenario " + out + "/'").exit_code == 0);
+  INFO(test::readFile(out + ".log"));
+  REQUIRE(rig.wait(90) == 0);  // the rig ran to its end around the restart
+
+  const auto summary = test::readSummary(out);
+  CHECK(summary["restarts"]["gyro"] == 1);
+  CHECK(test::readFile(fs::path(out) / "logs" / "gyro.restart-1.log").find("gyro: ready") != std::string::npos);
+  const fs::path exported = fs::path(out) / "export";
+  REQUIRE(test::runCommand(test::kFlatsat + " export " + out + "/recording.sqlite --json -t fault_event -t gyro -o " +
+                           exported.string())
+              .exit_code == 0);
+  std::uint64_t restarted_at = 0;
+  for (const auto& event : test::exportedRows(exported, "fault_event")) {
+    if (event["kind"] == "restarted" && event["header"]["source"] == "gyro") {
+      restarted_at = event["header"]["step"].get<std::uint64_t>();
+    }
+  }
+  CHECK(restarted_at > 0);
+  // The new process publishes on the same topic until the end of the run.
+  std::uint64_t after = 0, last = 0;
+  for (const auto& sample : test::exportedRows(exported, "gyro")) {
+    const auto step = sample["header"]["step"].get<std::uint64_t>();
+    after += step > restarted_at + 20;
+    last = std::max(last, step);
+  }
+  CHECK(after > 50);
+  CHECK(last >= 190);
+  fs::remove_all(out);
+  fs::remove(out + ".log");
+}
+
+TEST_CASE("flatsat run --restart is refused where a component cannot be started again", "[system][liveliness]") {
+  const auto lockstep = test::runCommand(test::kFlatsat + " run " + kDefault + " -q --no-plots --restart --out " +
+                                         test::freshDir("restart-lockstep"));
+  CHECK(lockstep.exit_code == 2);
+  CHECK(lockstep.output.find("only a paced multi-process run") != std::string::npos);
+}
