@@ -49,7 +49,7 @@ double secondsUntil(Seen& seen, const std::string& source, double limit_s) {
 
 }  // namespace
 
-TEST_CASE("a bridge overrides its emulator while alive; killed, readers fall back within the lease",
+TEST_CASE("a bridge overrides its emulator while alive, killed, readers fall back within the lease",
           "[component][dds][hil]") {
   const std::uint32_t domain = test::testDomain();
   bus::QosTuning tuning;

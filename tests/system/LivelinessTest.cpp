@@ -71,7 +71,7 @@ TEST_CASE("lockstep: a component killed mid-run stops the rig within the health 
   fs::remove(out + "-health.log");
 }
 
-TEST_CASE("paced: a component killed mid-run is shown dead within the lease and recorded; the rig goes on",
+TEST_CASE("paced: a component killed mid-run is shown dead within the lease and recorded, the rig goes on",
           "[system][liveliness][paced]") {
   test::exportTestDomain();
   const std::string out = test::freshDir("liveliness-paced");

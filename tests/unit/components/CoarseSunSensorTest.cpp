@@ -79,7 +79,7 @@ TEST_CASE("coarse sun sensor: cell noise as set, no Sun in eclipse", "[sun_senso
   CHECK_FALSE(sensor.step(in, 0).valid);
 }
 
-TEST_CASE("coarse sun sensor: Earth albedo pulls the estimate toward the Earth; eclipse stays dark",
+TEST_CASE("coarse sun sensor: Earth albedo pulls the estimate toward the Earth, eclipse stays dark",
           "[sun_sensor][albedo]") {
   SunSensorParams p = coarse(0.0);
   p.albedo = sim::AlbedoParams{};

@@ -44,7 +44,7 @@ TEST_CASE("coil arbiter: a window runs whole, the law resumes after it", "[coils
   }
 }
 
-TEST_CASE("coil arbiter: overlapping requests wait; two users never drive a coil at once",
+TEST_CASE("coil arbiter: overlapping requests wait, two users never drive a coil at once",
           "[coils]") {
   CoilArbiter arbiter(Eigen::Vector3d::Constant(150.0));
   const Eigen::Vector3d law(5.0, 5.0, 5.0);

@@ -62,7 +62,7 @@ TEST_CASE("spike adds its magnitude to exactly one sample", "[components][faults
   CHECK(measure(faults, Vec::Zero(), 1.1) == Vec::Zero());
 }
 
-TEST_CASE("dropout invalidates the sample; saturation clips", "[components][faults]") {
+TEST_CASE("dropout invalidates the sample, saturation clips", "[components][faults]") {
   SensorFaults<3> faults(1);
   faults.add(fault(SensorFaultKind::kDropout, -1, 0.0, 1.0, 1.0));
   faults.add(fault(SensorFaultKind::kSaturation, -1, 5.0, 0.0, 0.0));

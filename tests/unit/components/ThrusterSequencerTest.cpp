@@ -146,7 +146,7 @@ TEST_CASE("S1: correction pulses every T1 toward the target, counted, then floor
   }
 }
 
-TEST_CASE("S1: braking happens once per correction; later zero crosses fire nothing",
+TEST_CASE("S1: braking happens once per correction, later zero crosses fire nothing",
           "[thruster_sequencer]") {
   AngleOnlyLimitCycle cycle(workedExample());
   // Out below A2 for two pulses (t = 0, 10), back in at 10.5, then oscillating ±0.5 deg.
