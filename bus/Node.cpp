@@ -17,7 +17,8 @@ Node::Node(Bus& bus, NodeOptions options)
     : bus_(bus),
       options_(std::move(options)),
       health_(bus, topics::kHealth),
-      liveliness_([this](std::stop_token stop) {
+      // In process (composed) there is no liveliness to assert: no thread.
+      liveliness_(bus.localHub() != nullptr ? std::jthread() : std::jthread([this](std::stop_token stop) {
         std::mutex mutex;
         std::condition_variable_any wake;
         std::unique_lock lock(mutex);
@@ -25,7 +26,7 @@ Node::Node(Bus& bus, NodeOptions options)
           health_.assertLiveliness();
           wake.wait_for(lock, stop, kHealthLease / 3, [] { return false; });
         }
-      }),
+      })),
       bus_faults_(options_.seed, std::chrono::nanoseconds(options_.period).count(), options_.bus_faults),
       bus_fault_commands_(bus, topics::kFaultCmd, [this](const msg::FaultCmd& command) {
         if (text(command.target()) != kBusFaultTarget) return;

@@ -272,7 +272,7 @@ class Node {
   std::vector<std::unique_ptr<OutputBase>> outputs_;
   WriterOf<topics::kHealth> health_;
   /// Asserts the health writer's liveliness every third of kHealthLease while the
-  /// process lives, whatever its step thread does (waits, long steps).
+  /// process lives, whatever its step thread does (waits, long steps); none in process.
   std::jthread liveliness_;
 
  protected:
