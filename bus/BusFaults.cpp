@@ -105,6 +105,10 @@ bool BusFaultPlan::duplicated(std::uint64_t step) const {
 std::uint64_t BusFaultPlan::delaySteps(std::uint64_t step) const {
   if (empty()) return 0;
   std::lock_guard lock(mutex_);
+  return lateBy(step);
+}
+
+std::uint64_t BusFaultPlan::lateBy(std::uint64_t step) const {
   std::uint64_t steps = 0;
   for (const auto& f : faults_) {
     if (f.kind != BusFaultKind::kDelay || !f.actsAt(timeOf(step))) continue;
@@ -129,23 +133,21 @@ std::optional<std::uint64_t> BusFaultPlan::visibleStamp(std::uint64_t j, std::ui
     const std::uint64_t p = step - 1;
     return p - p % divider;
   };
+  std::lock_guard lock(mutex_);
   for (;;) {
     // A drop of every sample over a window: jump to the grid point before it
     // (a long outage would otherwise be walked back sample by sample).
     std::optional<std::uint64_t> outage_start;
-    {
-      std::lock_guard lock(mutex_);
-      for (const auto& f : faults_) {
-        if (f.kind == BusFaultKind::kDrop && f.magnitude >= 1.0 && f.actsAt(timeOf(s))) {
-          const auto first = static_cast<std::uint64_t>((f.start_ns + period_ns_ - 1) / period_ns_);
-          outage_start = std::min(outage_start.value_or(first), first);
-        }
+    for (const auto& f : faults_) {
+      if (f.kind == BusFaultKind::kDrop && f.magnitude >= 1.0 && f.actsAt(timeOf(s))) {
+        const auto first = static_cast<std::uint64_t>((f.start_ns + period_ns_ - 1) / period_ns_);
+        outage_start = std::min(outage_start.value_or(first), first);
       }
     }
     std::optional<std::uint64_t> next;
     if (outage_start) {
       next = before(std::min(s, *outage_start));
-    } else if (!dropped(s) && s + delaySteps(s) <= j) {
+    } else if (!hits(BusFaultKind::kDrop, s) && s + lateBy(s) <= j) {
       return s;
     } else {
       next = before(s);

@@ -80,6 +80,7 @@ class BusFaultPlan {
   /// The fault's pick for this step: uniform in [0, 1), the same everywhere.
   double pick(std::uint64_t step, std::size_t fault_index) const;
   bool hits(BusFaultKind kind, std::uint64_t step) const;  // caller holds mutex_
+  std::uint64_t lateBy(std::uint64_t step) const;           // delaySteps(); caller holds mutex_
   std::int64_t timeOf(std::uint64_t step) const { return static_cast<std::int64_t>(step) * period_ns_; }
 
   std::uint64_t key_;       // seed mixed with the topic
