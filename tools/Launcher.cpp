@@ -286,6 +286,11 @@ LaunchResult launch(const bus::Scenario& scenario, const LaunchOptions& options)
         ++it;
       }
     }
+    // Of the components found dead in one poll, the one a signal killed is
+    // the cause; the others exited reacting to it (e.g. the time master
+    // failing the run when the killed one's liveliness lapsed).
+    std::string signalled_failure;
+    std::string exited_failure;
     for (auto& c : children) {
       int status = 0;
       if (!c.running || waitpid(c.pid, &status, WNOHANG) != c.pid) continue;
@@ -301,11 +306,14 @@ LaunchResult launch(const bus::Scenario& scenario, const LaunchOptions& options)
         restartChild(c, status);
         continue;
       }
-      if (died && result.failure.empty()) {
-        result.failure = "component '" + c.name + "' died (" + describeExit(status) +
-                         "); last lines of " + c.log + ":\n" + tail(c.log, 8);
+      if (!died) continue;
+      std::string& failure = WIFSIGNALED(status) ? signalled_failure : exited_failure;
+      if (failure.empty()) {
+        failure = "component '" + c.name + "' died (" + describeExit(status) + "); last lines of " + c.log +
+                  ":\n" + tail(c.log, 8);
       }
     }
+    if (result.failure.empty()) result.failure = !signalled_failure.empty() ? signalled_failure : exited_failure;
     if (result.failure.empty()) result.failure = externals.failure();
     if (!result.failure.empty() || bus::shutdownRequested()) break;
     externals.report();
