@@ -3,6 +3,8 @@
 
 #include <spdlog/spdlog.h>
 
+#include "bus/Checkpoint.hpp"
+
 namespace flatsat::bus {
 
 Component::Component(Bus& bus, NodeOptions options)
@@ -28,7 +30,23 @@ void Component::run() {
   }
 }
 
+void Component::restoreCheckpoint() {
+  try {
+    const auto checkpoint = readCheckpoint(options_.checkpoint_file, name());
+    if (!checkpoint) {
+      spdlog::warn("{}: restarted, but {} holds no checkpoint: starting afresh", name(), options_.checkpoint_file);
+      return;
+    }
+    restoreState(checkpoint->state);
+    spdlog::info("{}: restarted with the state it had after step {} ({})", name(), checkpoint->step,
+                 options_.checkpoint_file);
+  } catch (const std::exception& e) {
+    spdlog::error("{}: restarted, its checkpoint is unusable, starting afresh: {}", name(), e.what());
+  }
+}
+
 void Component::start() {
+  if (options_.restore_checkpoint) restoreCheckpoint();
   waitForProducers();
   waitUntilNothingMissing(
       [this] { return grant_reader_.matchedWriters() == 0 ? " " + grant_reader_.topicName() : ""; },
@@ -82,6 +100,16 @@ bool Component::handle(const msg::StepGrant& grant) {
     done.header(makeHeader(ctx, name()));
     done_.write(done);
     ++steps_done_;
+    if (!options_.checkpoint_file.empty()) {
+      try {
+        if (const auto state = saveState(); !state.is_null()) {
+          writeCheckpoint(options_.checkpoint_file, name(), ctx.step, state);
+        }
+      } catch (const std::exception& e) {  // the run matters more than a later restart
+        spdlog::error("{}: no more checkpoints: {}", name(), e.what());
+        options_.checkpoint_file.clear();
+      }
+    }
   }
   dropInputsBefore(ctx.step);
   reachedStep(ctx.step);

@@ -3,6 +3,8 @@
 #include <deque>
 #include <optional>
 
+#include <nlohmann/json.hpp>
+
 #include "bus/Node.hpp"
 
 namespace flatsat::bus {
@@ -44,6 +46,14 @@ class Component : public Node {
   /// once this component says it stopped (a file on a shared volume) is final here.
   virtual void beforeStopped() {}
 
+  /// State that must survive a restart (paced `--restart`), as JSON; null:
+  /// none. Kept in NodeOptions::checkpoint_file after every step it was due.
+  virtual nlohmann::json saveState() const { return nullptr; }
+  /// Takes back what saveState() returned, before the first step of a
+  /// restarted process. Throws (nlohmann::json::exception, std::exception)
+  /// on a state it cannot use; the component then starts afresh.
+  virtual void restoreState(const nlohmann::json& /*state*/) {}
+
   /// What the RUNNING health says from now on ("stepping" until set): a
   /// change is published at once, then repeated by the heartbeat.
   void setStatus(const std::string& status);
@@ -53,6 +63,8 @@ class Component : public Node {
   /// One grant: steps when due; false for the stop grant.
   bool handle(const msg::StepGrant& grant);
   msg::StepGrant nextGrant();
+  /// --restarted: the state of the checkpoint, if there is a usable one.
+  void restoreCheckpoint();
   std::chrono::steady_clock::time_point next_health_;
   std::uint32_t divider_ = 1;  // this component's, from the schedule at start()
   std::deque<msg::StepGrant> grants_;

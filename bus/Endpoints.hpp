@@ -134,9 +134,17 @@ class Reader : private eprosima::fastdds::dds::DataReaderListener {
   /// never delivered a sample are not reported, nor the loss of one whose
   /// source has another writer that delivered since (a restarted process).
   using LivelinessCallback = std::function<void(const std::string& source, bool alive)>;
+  /// Called (on a Fast DDS thread) each time the topic's deadline QoS period
+  /// (paced stepped topics: QosTuning::lease) passes without a sample, with the
+  /// header.source of the last sample ("" before the first).
+  using DeadlineCallback = std::function<void(const std::string& source)>;
 
-  Reader(Bus& bus, const Def& def, Callback on_sample, LivelinessCallback on_liveliness = {})
-      : name_(def.name), on_sample_(std::move(on_sample)), on_liveliness_(std::move(on_liveliness)) {
+  Reader(Bus& bus, const Def& def, Callback on_sample, LivelinessCallback on_liveliness = {},
+         DeadlineCallback on_deadline = {})
+      : name_(def.name),
+        on_sample_(std::move(on_sample)),
+        on_liveliness_(std::move(on_liveliness)),
+        on_deadline_(std::move(on_deadline)) {
     if (LocalHub* hub = bus.localHub()) {
       local_ = &hub->channel(def);
       local_id_ = local_->addReader(&on_sample_);
@@ -173,9 +181,10 @@ class Reader : private eprosima::fastdds::dds::DataReaderListener {
     eprosima::fastdds::dds::SampleInfo info;
     while (reader->take_next_sample(&sample, &info) == ReturnCode_t::RETCODE_OK) {
       if (!info.valid_data) continue;
-      if (on_liveliness_) {
+      if (on_liveliness_ || on_deadline_) {
         std::lock_guard lock(sources_mutex_);
-        sources_[info.publication_handle] = text(sample.header().source());
+        last_source_ = text(sample.header().source());
+        if (on_liveliness_) sources_[info.publication_handle] = last_source_;
       }
       on_sample_(sample);
     }
@@ -199,10 +208,23 @@ class Reader : private eprosima::fastdds::dds::DataReaderListener {
     if (status.alive_count_change > 0) on_liveliness_(source, true);
   }
 
+  void on_requested_deadline_missed(eprosima::fastdds::dds::DataReader*,
+                                    const eprosima::fastdds::dds::RequestedDeadlineMissedStatus&) override {
+    if (!on_deadline_) return;
+    std::string source;
+    {
+      std::lock_guard lock(sources_mutex_);
+      source = last_source_;
+    }
+    on_deadline_(source);
+  }
+
   std::string name_;
   Callback on_sample_;
   LivelinessCallback on_liveliness_;
+  DeadlineCallback on_deadline_;
   std::mutex sources_mutex_;
+  std::string last_source_;
   std::map<eprosima::fastdds::dds::InstanceHandle_t, std::string> sources_;  // writer -> header.source
   eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;
   eprosima::fastdds::dds::DataReader* reader_ = nullptr;

@@ -172,7 +172,14 @@ void Node::publishHealth(msg::ComponentState state, std::uint64_t steps_done,
   std::uint64_t copies = 0;
   for (const auto& input : inputs_) copies += input->copiesDropped();
   health.copies_dropped(copies);
+  health.deadlines_missed(deadlines_missed_.load());
   health_.write(health);
+}
+
+void Node::inputLate(const std::string& topic, const std::string& producer) {
+  const std::uint64_t missed = ++deadlines_missed_;
+  spdlog::warn("{}: {} from {} is late: nothing within its deadline ({} ms); {} deadline(s) missed so far", name(),
+               topic, producer.empty() ? "its producer" : producer, bus_.tuning().lease.count(), missed);
 }
 
 void Node::publishLastHealth(msg::ComponentState state, std::uint64_t steps_done,

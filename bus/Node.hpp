@@ -53,6 +53,12 @@ struct NodeOptions {
   std::chrono::milliseconds step_timeout{60000};  ///< [ms] for one step's data
   std::uint64_t seed = 1;                         ///< [-] the scenario's: picks the samples bus faults hit
   std::vector<BusFault> bus_faults;               ///< from the scenario; more arrive as FaultCmd
+  /// Paced multi-process runs: where a component with state keeps it after each step
+  /// (bus/Checkpoint.hpp); empty: nowhere.
+  std::string checkpoint_file;
+  /// A process started again mid-run (`flatsat run --restart`): it takes its state back
+  /// from checkpoint_file before its first step.
+  bool restore_checkpoint = false;
 };
 
 /// A FaultCmd addressed to the bus as a fault; every problem (empty: valid).
@@ -238,6 +244,10 @@ class Node {
   void reachedStep(std::uint64_t k) { step_reached_ = k; }
   std::uint64_t step_reached_ = 0;
   std::uint64_t stale_inputs_ = 0;
+  /// Paced: deadline periods an input's producer let pass without a sample.
+  std::atomic<std::uint64_t> deadlines_missed_{0};
+  /// An input's deadline passed (paced stepped topics' deadline QoS), on a Fast DDS thread.
+  void inputLate(const std::string& topic, const std::string& producer);
   /// Paced: grants skipped because the node fell behind the wall clock.
   std::uint64_t overruns_ = 0;
   /// Guards the node's own bookkeeping (grants, done sets, states) and the
@@ -329,7 +339,10 @@ Input<Def>::Input(Node& node, const Def& def, std::uint32_t producer_divider, Ob
           samples_.insert_or_assign(sample.header().step(), sample);
         }
         node_.notify();
-      }) {}
+      },
+      {},
+      node.paced() ? [this](const std::string& source) { node_.inputLate(topicName(), source); }
+                   : typename Reader<Def>::DeadlineCallback{}) {}
 
 template <class Def>
 bool Input<Def>::resent(const Sample& sample) const {

@@ -2,6 +2,7 @@
 #include "bus/NodeMain.hpp"
 
 #include <cmath>
+#include <filesystem>
 
 #include <CLI/CLI.hpp>
 #include <spdlog/sinks/stdout_color_sinks.h>
@@ -17,6 +18,8 @@ NodeArgs parseNodeArgs(int argc, char** argv, const std::string& default_name) {
   app.add_option("--name", args.name, "component name in the scenario");
   app.add_option("--out", args.out_dir, "run directory");
   app.add_option("--log", level, "log level: trace, debug, info, warn, error");
+  app.add_flag("--restarted", args.restarted,
+               "started again mid-run (flatsat run --restart): take the state back from <out>/checkpoints/");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -37,6 +40,18 @@ NodeOptions nodeOptions(const Scenario& scenario, const std::string& name) {
   options.period = std::chrono::nanoseconds(std::llround(scenario.step_s * 1e9));
   options.seed = scenario.seed;
   options.bus_faults = scenario.bus_faults;
+  return options;
+}
+
+NodeOptions nodeOptions(const Scenario& scenario, const NodeArgs& args) {
+  NodeOptions options = nodeOptions(scenario, args.name);
+  // Only a paced run restarts a component (a lockstep one resumes from its recording).
+  if (scenario.pacing == Pacing::kPaced && !args.out_dir.empty()) {
+    const auto folder = std::filesystem::path(args.out_dir) / "checkpoints";
+    std::filesystem::create_directories(folder);
+    options.checkpoint_file = (folder / (args.name + ".json")).string();
+    options.restore_checkpoint = args.restarted;
+  }
   return options;
 }
 

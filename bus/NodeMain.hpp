@@ -18,6 +18,7 @@ struct NodeArgs {
   std::string scenario;  ///< scenario file
   std::string name;      ///< component name in the scenario
   std::string out_dir;   ///< run directory (recordings, logs)
+  bool restarted = false;  ///< started again mid-run: take the state back from its checkpoint
 };
 
 /// Parses `--scenario FILE [--name NAME] [--out DIR] [--log LEVEL]`, sets up
@@ -26,6 +27,9 @@ NodeArgs parseNodeArgs(int argc, char** argv, const std::string& default_name);
 
 /// Everything a node needs from the scenario besides its own parameters.
 NodeOptions nodeOptions(const Scenario& scenario, const std::string& name);
+/// The same, with the checkpoint a paced process with a run directory keeps
+/// (<out>/checkpoints/<name>.json) and whether it restores it (--restarted).
+NodeOptions nodeOptions(const Scenario& scenario, const NodeArgs& args);
 /// The participant's QoS tuning in this scenario, at the given ownership strength.
 QosTuning qosTuning(const Scenario& scenario, std::int32_t ownership_strength);
 
@@ -52,7 +56,7 @@ int runNode(int argc, char** argv, const std::string& default_name, Read&& read,
                        .identity = args.name};
     useNetwork(options, networkFromEnvironment());
     Bus bus(options);
-    auto node = make(bus, nodeOptions(scenario, args.name), params);
+    auto node = make(bus, nodeOptions(scenario, args), params);
     node->run();
     return 0;
   } catch (const ScenarioError& e) {

@@ -48,6 +48,12 @@ struct QosTuning {
 /// killed writer would stay alive for the 20 s participant lease).
 inline constexpr std::chrono::milliseconds kHealthLease{3000};
 
+/// A running component whose last health (every second, bus::kHealthPeriod)
+/// is older than this is late: its steps have stopped turning though its
+/// process may live (paced rigs; the time master records it, `flatsat
+/// health` shows it).
+inline constexpr std::chrono::milliseconds kHealthLate{1500};
+
 inline constexpr std::int32_t kEmulatorStrength = 10;
 inline constexpr std::int32_t kBridgeStrength = 100;
 

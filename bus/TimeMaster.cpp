@@ -23,12 +23,17 @@ TimeMaster::TimeMaster(Bus& bus, NodeOptions options, Timing timing)
                          const auto source = text(health.header().source());
                          states_[source] = health.state();
                          messages_[source] = text(health.message());
+                         health_arrived_[source] = std::chrono::steady_clock::now();
+                         if (late_.erase(source) > 0) {
+                           spdlog::info("{}: {} is on time again", name(), source);
+                           component_events_.push_back({source, "late", false});
+                         }
                          // A lost component starting again (restarted): its new writer is alive.
                          if ((health.state() == msg::ComponentState::STARTING ||
                               health.state() == msg::ComponentState::READY) &&
                              lost_.erase(source) > 0) {
                            spdlog::info("{}: {} is back", name(), source);
-                           liveliness_events_.emplace_back(source, false);
+                           component_events_.push_back({source, "lost", false});
                          }
                        }
                        changed_.notify_all();
@@ -69,7 +74,7 @@ void TimeMaster::livelinessChanged(const std::string& component, bool alive) {
       spdlog::warn("{}: {} lost its liveliness ({} ms without a sign of life)", name(), component,
                    kHealthLease.count());
     }
-    liveliness_events_.emplace_back(component, !alive);
+    component_events_.push_back({component, "lost", !alive});
   }
   changed_.notify_all();
 }
@@ -144,6 +149,21 @@ void TimeMaster::waitForTick(std::chrono::steady_clock::time_point tick) {
   }
   // Paced steps wait for nobody; who was late shows in their health.
   done_.clear();
+  findLate(tick);
+}
+
+void TimeMaster::findLate(std::chrono::steady_clock::time_point now) {
+  for (const auto& [component, arrived] : health_arrived_) {
+    const auto state = states_.find(component);
+    if (component == name() || now - arrived <= kHealthLate || late_.count(component) != 0 ||
+        lost_.count(component) != 0 || state == states_.end() || state->second != msg::ComponentState::RUNNING) {
+      continue;
+    }
+    late_.insert(component);
+    spdlog::warn("{}: {} is late: no health for {} ms (its steps are not turning)", name(), component,
+                 std::chrono::duration_cast<std::chrono::milliseconds>(now - arrived).count());
+    component_events_.push_back({component, "late", true});
+  }
 }
 
 void TimeMaster::run() {
@@ -172,18 +192,18 @@ void TimeMaster::start() {
 
 void TimeMaster::publishFaultEvents(const StepContext& ctx) {
   bus_fault_acks_.publish(ctx, name());
-  std::vector<std::pair<std::string, bool>> liveliness;
+  std::vector<ComponentEvent> component_events;
   {
     std::lock_guard lock(mutex_);
-    liveliness.swap(liveliness_events_);
+    component_events.swap(component_events_);
   }
-  for (const auto& [component, lost] : liveliness) {
+  for (const auto& [component, kind, active] : component_events) {
     msg::FaultEvent event;
     event.header(makeHeader(ctx, component));
-    setText(event.kind(), "lost");
+    setText(event.kind(), kind);
     setText(event.topic(), topics::kHealth.name);
     event.channel(-1);
-    event.active(lost);
+    event.active(active);
     bus_fault_events_.write(event);
   }
   for (const auto& [topic, plan] : bus_faults_.faulted()) {

@@ -63,11 +63,15 @@ class TimeMaster : public Node {
   std::string failedComponents() const;
   /// The acknowledgements of bus faults commanded since the last step, a
   /// FaultEvent for each bus fault that began or stopped acting at step k, and
-  /// one (kind "lost", from the component) for each liveliness lost or regained.
+  /// one (kind "lost" or "late", from the component) for each liveliness lost
+  /// or regained and each component found late or on time again.
   void publishFaultEvents(const StepContext& ctx);
   /// A component's health writer lost or regained its liveliness (kHealthLease):
   /// lost, a lockstep run stops naming it; paced runs go on and record it.
   void livelinessChanged(const std::string& component, bool alive);
+  /// Paced: marks late each running component with no health for kHealthLate.
+  /// Call under mutex_.
+  void findLate(std::chrono::steady_clock::time_point now);
 
   StepContext context(std::uint64_t k) const {
     return {k, static_cast<std::int64_t>(k) * timing_.period_ns, timing_.period_ns};
@@ -80,7 +84,14 @@ class TimeMaster : public Node {
   std::map<std::string, msg::ComponentState> states_;
   std::map<std::string, std::string> messages_;
   std::set<std::string> lost_;  // components whose liveliness is lost
-  std::vector<std::pair<std::string, bool>> liveliness_events_;  // (component, lost) to publish
+  std::set<std::string> late_;  // paced: running components whose health is older than kHealthLate
+  std::map<std::string, std::chrono::steady_clock::time_point> health_arrived_;
+  struct ComponentEvent {
+    std::string component;
+    const char* kind;  // "lost" (liveliness) or "late" (health)
+    bool active;
+  };
+  std::vector<ComponentEvent> component_events_;  // to publish at the next step
   ReaderOf<topics::kStepDone> done_reader_;
   ReaderOf<topics::kHealth> health_reader_;
   WriterOf<topics::kStepGrant> grant_;

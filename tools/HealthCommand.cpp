@@ -23,23 +23,26 @@ namespace {
 struct HealthOptions {
   bool once = false;
   double wait_s = 8.0;
+  double every_s = 1.0;  // [s] watch: refresh period, in [0.1, 60]
   bool json = false;
   int domain = -1;
   std::string component;  // --component: that one only, its state as the exit code
 };
 
 void printTable(const nlohmann::ordered_json& rows, std::uint32_t domain) {
-  std::printf("%-22s %-14s %10s %6s %9s %6s %8s %8s %8s  %s\n", "COMPONENT", "STATE", "STEPS", "LAG",
-              "OVERRUNS", "STALE", "DROPPED", "REFUSED", "AGE [s]", "MESSAGE");
+  std::printf("%-22s %-14s %10s %6s %9s %6s %9s %8s %8s %8s  %s\n", "COMPONENT", "STATE", "STEPS", "LAG",
+              "OVERRUNS", "STALE", "DEADLINES", "DROPPED", "REFUSED", "AGE [s]", "MESSAGE");
   for (const auto& r : rows) {
     std::string state = r["state"].is_string() ? r["state"].get<std::string>() : r["state"].dump();
     if (!r["alive"].get<bool>()) state += " (gone)";
-    std::printf("%-22s %-14s %10llu %6llu %9llu %6llu %8llu %8llu %8.1f  %s\n",
+    if (r["late"].get<bool>()) state += " (late)";
+    std::printf("%-22s %-14s %10llu %6llu %9llu %6llu %9llu %8llu %8llu %8.1f  %s\n",
                 r["component"].get<std::string>().c_str(), state.c_str(),
                 static_cast<unsigned long long>(r["steps_done"].get<std::uint64_t>()),
                 static_cast<unsigned long long>(r["lag_steps"].get<std::uint64_t>()),
                 static_cast<unsigned long long>(r["overruns"].get<std::uint64_t>()),
                 static_cast<unsigned long long>(r["stale_inputs"].get<std::uint64_t>()),
+                static_cast<unsigned long long>(r["deadlines_missed"].get<std::uint64_t>()),
                 static_cast<unsigned long long>(r["samples_dropped"].get<std::uint64_t>()),
                 static_cast<unsigned long long>(r["commands_refused"].get<std::uint64_t>()),
                 r["age_s"].get<double>(), r["message"].get<std::string>().c_str());
@@ -121,7 +124,7 @@ int health(const HealthOptions& o) {
   }
 
   const bool tty = ::isatty(STDOUT_FILENO) != 0;
-  while (sleepUnlessInterrupted(1.0)) {
+  while (sleepUnlessInterrupted(o.every_s)) {
     const auto rows = snapshot();
     if (o.json) {
       std::cout << rows.dump() << "\n" << std::flush;
@@ -149,6 +152,8 @@ CLI::App* addHealthCommand(CLI::App& app, int& exit_code) {
                   "only this component, once: exit 0 when it reported within --wait and is "
                   "neither FAILED nor gone (a container health check)");
   cmd->add_flag("--json", options->json, "JSON rows instead of a table (one line per refresh)");
+  cmd->add_option("--every", options->every_s, "watch: refresh every S seconds [s] (default 1)")
+      ->check(CLI::Range(0.1, 60.0));
   addDomainOption(*cmd, options->domain);
   cmd->footer(
       "Refreshed every second until Ctrl-C. LAG is how many steps a component's last\n"

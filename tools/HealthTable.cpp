@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 
+#include "bus/Qos.hpp"
 #include "bus/Stamp.hpp"
 
 namespace flatsat::tools {
@@ -59,6 +60,8 @@ nlohmann::ordered_json healthTable(const std::map<std::string, HealthEntry>& ent
   auto rows = nlohmann::ordered_json::array();
   for (const auto& [name, e] : entries) {
     const auto p = participants.find(e.writer.guidPrefix);
+    const bool alive = e.writer_alive && p != participants.end() && p->second.alive;
+    const double age_s = ageSeconds(e.health);
     rows.push_back({{"component", name},
                     {"state", msg::toJson(e.health.state())},
                     {"steps_done", e.health.steps_done()},
@@ -67,8 +70,11 @@ nlohmann::ordered_json healthTable(const std::map<std::string, HealthEntry>& ent
                     {"stale_inputs", staleInputs(e.health)},
                     {"samples_dropped", e.health.samples_dropped()},
                     {"commands_refused", e.health.commands_refused()},
-                    {"age_s", ageSeconds(e.health)},
-                    {"alive", e.writer_alive && p != participants.end() && p->second.alive},
+                    {"deadlines_missed", e.health.deadlines_missed()},
+                    {"age_s", age_s},
+                    {"alive", alive},
+                    {"late", alive && e.health.state() == msg::ComponentState::RUNNING &&
+                                 age_s > std::chrono::duration<double>(bus::kHealthLate).count()},
                     {"message", bus::text(e.health.message())}});
   }
   return rows;

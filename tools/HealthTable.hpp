@@ -21,7 +21,8 @@ struct HealthEntry {
 
 /// One row per component: state, steps done, lag (steps behind the component furthest
 /// ahead, at their last health), overruns (deadline misses), stale inputs, drops, refusals,
-/// age of the last health, alive, message (`flatsat health --json`, the web view).
+/// inputs' deadlines missed, age of the last health, alive, late (running, alive, and its
+/// health older than bus::kHealthLate), message (`flatsat health --json`, the web view).
 /// Each component's newest health into `entries` (under `mutex`) as it
 /// arrives, its writer marked dead when its liveliness lapses.
 class HealthTap {

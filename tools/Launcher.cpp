@@ -40,6 +40,7 @@ struct Child {
   bool running = true;
   std::string log;
   bool required = true;  // a stepped component: its death stops the rig
+  bool restarted = false;  // started again mid-run: it takes its checkpoint back
 };
 
 std::string describeExit(int status) {
@@ -213,6 +214,20 @@ LaunchResult launch(const bus::Scenario& scenario, const LaunchOptions& options)
 
   const auto start = Clock::now();
   Externals externals(bus, scenario, start);
+  // The time master's verdicts on the components, as they happen.
+  bus::ReaderOf<bus::topics::kFaultEvent> component_events(bus, bus::topics::kFaultEvent, [](const msg::FaultEvent& e) {
+    const std::string kind = bus::text(e.kind());
+    if (kind != "lost" && kind != "late") return;
+    const std::string component = bus::text(e.header().source());
+    if (!e.active()) {
+      spdlog::info("{} is {} again (step {})", component, kind == "lost" ? "alive" : "on time", e.header().step());
+    } else if (kind == "lost") {
+      spdlog::warn("{} lost its liveliness at step {}: its process is gone", component, e.header().step());
+    } else {
+      spdlog::warn("{} is late at step {}: no health for {} ms", component, e.header().step(),
+                   bus::kHealthLate.count());
+    }
+  });
   std::vector<Child> children;
   std::vector<const bus::ComponentEntry*> late;  // bridges that start after a delay
   const auto spawn = [&](Child& child) {
@@ -224,6 +239,7 @@ LaunchResult launch(const bus::Scenario& scenario, const LaunchOptions& options)
     argv.insert(argv.end(), {(fs::path(options.bin_dir) / kind->executable).string(), "--scenario",
                              options.scenario_file, "--name", child.name, "--out",
                              options.run_dir, "--log", options.log_level});
+    if (child.restarted) argv.push_back("--restarted");
     child.pid = spawnLogged(argv, child.log);
     child.running = true;
     spdlog::debug("started {} (pid {})", child.name, child.pid);
@@ -250,6 +266,7 @@ LaunchResult launch(const bus::Scenario& scenario, const LaunchOptions& options)
     event.active(true);
     restart_events.write(event);
     c.log = (logs / (c.name + ".restart-" + std::to_string(n) + ".log")).string();
+    c.restarted = true;
     spawn(c);
   };
   for (const auto& component : scenario.components) {

@@ -128,21 +128,22 @@ nlohmann::ordered_json summarize(const bus::Scenario& scenario, const std::strin
     s["tick_jitter_us_max"] = launch.tick_jitter.max_us;
     s["ticks_missed"] = launch.tick_jitter.missed;
   }
-  std::map<std::string, std::pair<std::uint64_t, std::uint64_t>> lateness;  // stale, overruns
+  std::map<std::string, std::array<std::uint64_t, 3>> lateness;  // stale, overruns, deadlines missed
   nlohmann::ordered_json dropped = nlohmann::ordered_json::object();  // last count by component
   std::map<std::string, std::uint64_t> refused;                     // last count by component
   using HealthDef = std::remove_cvref_t<decltype(bus::topics::kHealth)>;
   recording.forEach(std::string(bus::topics::kHealth.name),
                     [&](std::uint64_t, const std::string& source, const std::vector<std::uint8_t>& bytes) {
                       const auto health = bus::deserialize<HealthDef>(bytes);
-                      lateness[source] = {health.stale_inputs(), health.overruns()};
+                      lateness[source] = {health.stale_inputs(), health.overruns(), health.deadlines_missed()};
                       dropped[source] = health.samples_dropped();
                       refused[source] = health.commands_refused();
                     });
-  std::uint64_t stale = 0, overruns = 0;
+  std::uint64_t stale = 0, overruns = 0, deadlines_missed = 0;
   for (const auto& [component, counts] : lateness) {
-    stale += counts.first;
-    overruns += counts.second;
+    stale += counts[0];
+    overruns += counts[1];
+    deadlines_missed += counts[2];
   }
   // Exclusive ownership delivers one producer's samples at a time, so a
   // change of source on a topic is a hand-over (bridge <-> emulator).
@@ -187,6 +188,7 @@ nlohmann::ordered_json summarize(const bus::Scenario& scenario, const std::strin
   if (!launch.restarts.empty()) s["restarts"] = launch.restarts;
   s["stale_inputs"] = stale;
   s["overruns"] = overruns;
+  s["deadlines_missed"] = deadlines_missed;
   // Received samples that did not decode, as each component's last recorded
   // health counted them (a rogue or broken writer on the bus).
   std::uint64_t dropped_total = 0;

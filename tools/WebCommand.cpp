@@ -46,7 +46,7 @@ td:first-child, th:first-child, td.state, td.message { text-align: left; }
 <h1>flatsat live</h1>
 <p id="status">waiting for the rig&hellip;</p>
 <table id="health"><thead><tr><th>component</th><th>state</th><th>steps</th><th>lag</th><th>overruns</th><th>stale</th>
-<th>dropped</th><th>refused</th><th>age [s]</th><th>message</th></tr></thead><tbody></tbody></table>
+<th>deadlines</th><th>dropped</th><th>refused</th><th>age [s]</th><th>message</th></tr></thead><tbody></tbody></table>
 <div>
 <canvas id="rate" width="560" height="260" data-title="body rate |&omega;| [deg/s]"></canvas>
 <canvas id="momentum" width="560" height="260" data-title="wheel momentum |h| [N m s]"></canvas>
@@ -77,8 +77,10 @@ async function refresh() {
     body.innerHTML = '';
     for (const r of s.health) {
       const row = body.insertRow(); row.dataset.component = r.component;
-      cell(row, r.component); cell(row, r.state + (r.alive ? '' : ' (gone)'), r.alive ? 'state' : 'state gone');
-      cell(row, r.steps_done); cell(row, r.lag_steps); cell(row, r.overruns); cell(row, r.stale_inputs); cell(row, r.samples_dropped);
+      const flag = r.alive ? (r.late ? ' (late)' : '') : ' (gone)';
+      cell(row, r.component); cell(row, r.state + flag, flag ? 'state gone' : 'state');
+      cell(row, r.steps_done); cell(row, r.lag_steps); cell(row, r.overruns); cell(row, r.stale_inputs);
+      cell(row, r.deadlines_missed); cell(row, r.samples_dropped);
       cell(row, r.commands_refused); cell(row, r.age_s.toFixed(1)); cell(row, r.message, 'message');
     }
     document.getElementById('status').textContent =

@@ -82,6 +82,14 @@ void AttitudeEstimator::reset() {
   has_last_t_ = false;
 }
 
+void AttitudeEstimator::restore(const State& state) {
+  q_NB_ = state.q_NB;
+  bias_B_rad_s_ = state.bias_B_rad_s;
+  initialized_ = state.initialized;
+  last_t_ns_ = state.last_t_ns;
+  has_last_t_ = state.has_last_t;
+}
+
 AttitudeEstimatorOutput AttitudeEstimator::step(const Input& in, std::int64_t t_ns) {
   const double dt_s =
       has_last_t_ ? std::max(0.0, static_cast<double>(t_ns - last_t_ns_) * 1e-9) : 0.0;

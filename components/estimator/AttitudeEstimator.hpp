@@ -54,8 +54,19 @@ struct AttitudeEstimatorOutput {
 /// Afterwards: the explicit complementary filter with bias estimation of Mahony, Hamel &
 /// Pflimlin 2008 (IEEE TAC 53(5), Eq. 32), corrected by whichever vectors are valid; with
 /// none (eclipse and no field) it propagates on the bias-corrected gyro.
+/// Everything the filter carries from one step to the next: a checkpoint of it lets a
+/// restarted estimator go on where the old one stopped.
+struct AttitudeEstimatorState {
+  Eigen::Quaterniond q_NB = Eigen::Quaterniond::Identity();  // [-] body to inertial, Hamilton
+  Eigen::Vector3d bias_B_rad_s = Eigen::Vector3d::Zero();    // [rad/s] gyro bias estimate
+  bool initialized = false;                                  // [-] TRIAD done
+  std::int64_t last_t_ns = 0;                                // [ns] previous step's sample time
+  bool has_last_t = false;                                   // [-] last_t_ns holds one
+};
+
 class AttitudeEstimator {
  public:
+  using State = AttitudeEstimatorState;
   using Params = AttitudeEstimatorParams;
   using Input = AttitudeEstimatorInput;
   using Output = AttitudeEstimatorOutput;
@@ -70,6 +81,10 @@ class AttitudeEstimator {
   Output step(const Input& in, std::int64_t t_ns);
 
   const Params& params() const { return params_; }
+
+  State state() const { return {q_NB_, bias_B_rad_s_, initialized_, last_t_ns_, has_last_t_}; }
+  /// Continues from `state` (a checkpoint); the next step propagates from its last_t_ns.
+  void restore(const State& state);
 
  private:
   Params params_;

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "components/estimator/EstimatorNode.hpp"
 
+#include "components/common/StateJson.hpp"
+
 #include <algorithm>
 
 #include "bus/Convert.hpp"
@@ -160,6 +162,63 @@ void EstimatorNode::stepS0(const bus::StepContext& ctx, const msg::GyroReading& 
   field_estimate_.write(field);
 }
 
+
+nlohmann::json EstimatorNode::saveState() const {
+  nlohmann::json j;
+  if (mekf_) {
+    const MekfState s = mekf_->state();
+    j["mekf"] = {{"q_inertial_body", state_json::quaternion(s.q_NB)},
+                 {"gyro_bias_body_rad_s", state_json::matrix(s.bias_B_rad_s)},
+                 {"magnetometer_bias_body_T", state_json::matrix(s.mag_bias_B_T)},
+                 {"covariance", state_json::matrix(s.P)},
+                 {"initialized", s.initialized},
+                 {"measurements_rejected", s.rejected_total},
+                 {"rejected_in_a_row", s.rejected_in_a_row},
+                 {"last_t_ns", s.last_t_ns},
+                 {"has_last_t", s.has_last_t}};
+    if (previous_w_B_rad_s_) j["previous_w_body_rad_s"] = state_json::matrix(*previous_w_B_rad_s_);
+  } else {
+    const AttitudeEstimatorState s = mahony_->state();
+    j["mahony"] = {{"q_inertial_body", state_json::quaternion(s.q_NB)},
+                   {"gyro_bias_body_rad_s", state_json::matrix(s.bias_B_rad_s)},
+                   {"initialized", s.initialized},
+                   {"last_t_ns", s.last_t_ns},
+                   {"has_last_t", s.has_last_t}};
+  }
+  return j;
+}
+
+void EstimatorNode::restoreState(const nlohmann::json& j) {
+  if (mekf_) {
+    const auto& m = j.at("mekf");
+    MekfState s;
+    s.q_NB = state_json::readQuaternion(m, "q_inertial_body");
+    state_json::read(m, "gyro_bias_body_rad_s", s.bias_B_rad_s);
+    state_json::read(m, "magnetometer_bias_body_T", s.mag_bias_B_T);
+    state_json::read(m, "covariance", s.P);
+    s.initialized = m.at("initialized").get<bool>();
+    s.rejected_total = m.at("measurements_rejected").get<std::uint64_t>();
+    s.rejected_in_a_row = m.at("rejected_in_a_row").get<std::array<int, 3>>();
+    s.last_t_ns = m.at("last_t_ns").get<std::int64_t>();
+    s.has_last_t = m.at("has_last_t").get<bool>();
+    if (j.contains("previous_w_body_rad_s")) {
+      Eigen::Vector3d w;
+      state_json::read(j, "previous_w_body_rad_s", w);
+      previous_w_B_rad_s_ = w;
+    }
+    mekf_->restore(s);
+    mekf_initialized_ = s.initialized;
+  } else {
+    const auto& m = j.at("mahony");
+    AttitudeEstimatorState s;
+    s.q_NB = state_json::readQuaternion(m, "q_inertial_body");
+    state_json::read(m, "gyro_bias_body_rad_s", s.bias_B_rad_s);
+    s.initialized = m.at("initialized").get<bool>();
+    s.last_t_ns = m.at("last_t_ns").get<std::int64_t>();
+    s.has_last_t = m.at("has_last_t").get<bool>();
+    mahony_->restore(s);
+  }
+}
 
 void EstimatorNode::step(const bus::StepContext& ctx) {
   std::optional<msg::SunSensorReading> sun;

@@ -39,6 +39,11 @@ class EstimatorNode final : public bus::Component {
 
  private:
   void step(const bus::StepContext& ctx) override;
+  /// The filter's estimate, biases, covariance (MEKF) and clock, so a restarted estimator
+  /// goes on from its last step instead of acquiring again with zero bias. The S0 field
+  /// estimate is not kept: it is measured again at the next coil window.
+  nlohmann::json saveState() const override;
+  void restoreState(const nlohmann::json& state) override;
 
   bus::InputOf<bus::topics::kGyro>& gyro_ = addInput(bus::topics::kGyro);
   bus::InputOf<bus::topics::kSunSensor>* sun_ = nullptr;              // optional

@@ -88,6 +88,18 @@ void Mekf::reset() {
   has_last_t_ = false;
 }
 
+void Mekf::restore(const State& state) {
+  q_NB_ = state.q_NB;
+  bias_B_rad_s_ = state.bias_B_rad_s;
+  mag_bias_B_T_ = state.mag_bias_B_T;
+  P_ = state.P;
+  initialized_ = state.initialized;
+  rejected_total_ = state.rejected_total;
+  rejected_in_a_row_ = state.rejected_in_a_row;
+  last_t_ns_ = state.last_t_ns;
+  has_last_t_ = state.has_last_t;
+}
+
 void Mekf::propagate(const Eigen::Vector3d& w_gyro_B, double dt_s) {
   // Reference: q ← q ⊗ exp(ω̂Δt/2) with ω̂ = ω̃ − β̂, the exact solution for a rate held over Δt.
   const Eigen::Vector3d w = w_gyro_B - bias_B_rad_s_;

@@ -83,8 +83,22 @@ struct MekfOutput {
 /// are unit-vector measurements, the star tracker a full attitude. Each measurement passes a
 /// χ² gate on its innovation first. Initialisation: the star tracker when valid, else TRIAD
 /// (Sun primary, field secondary).
+/// Everything the MEKF carries from one step to the next (a restart's checkpoint).
+struct MekfState {
+  Eigen::Quaterniond q_NB = Eigen::Quaterniond::Identity();  // [-] body to inertial, Hamilton
+  Eigen::Vector3d bias_B_rad_s = Eigen::Vector3d::Zero();    // [rad/s] gyro bias estimate
+  Eigen::Vector3d mag_bias_B_T = Eigen::Vector3d::Zero();    // [T] magnetometer bias estimate
+  MekfMatrix P = MekfMatrix::Zero();                         // [rad², rad²/s², T²] error covariance
+  bool initialized = false;                                  // [-] an attitude was acquired
+  std::uint64_t rejected_total = 0;                          // [-] gated measurements so far
+  std::array<int, 3> rejected_in_a_row{};                    // [-] per sensor: Sun, field, star tracker
+  std::int64_t last_t_ns = 0;                                // [ns] previous step's sample time
+  bool has_last_t = false;                                   // [-] last_t_ns holds one
+};
+
 class Mekf {
  public:
+  using State = MekfState;
   using Params = MekfParams;
   using Input = MekfInput;
   using Output = MekfOutput;
@@ -102,6 +116,14 @@ class Mekf {
   /// [-] χ² gate of a two-dimensional (direction) and three-dimensional (star tracker) innovation.
   double gate2() const { return gate2_; }
   double gate3() const { return gate3_; }
+
+  State state() const {
+    return {q_NB_, bias_B_rad_s_, mag_bias_B_T_, P_, initialized_, rejected_total_, rejected_in_a_row_,
+            last_t_ns_, has_last_t_};
+  }
+  /// Continues from `state` (a checkpoint, taken as it is: q_NB unit, P symmetric): the
+  /// next step propagates state and covariance over the time since its last_t_ns.
+  void restore(const State& state);
 
  private:
   void propagate(const Eigen::Vector3d& w_gyro_B, double dt_s);

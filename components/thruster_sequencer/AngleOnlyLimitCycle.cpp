@@ -46,6 +46,16 @@ void AngleOnlyLimitCycle::reset() {
   last_pulse_ns_ = 0;
 }
 
+void AngleOnlyLimitCycle::restore(const State& state) {
+  phase_ = state.phase;
+  side_ = state.side;
+  correction_count_ = state.correction_count;
+  braking_count_ = state.braking_count;
+  braking_remaining_ = state.braking_remaining;
+  fired_ = state.fired;
+  last_pulse_ns_ = state.last_pulse_ns;
+}
+
 bool AngleOnlyLimitCycle::pulseDue(std::int64_t t_ns, std::int64_t interval_ns) const {
   return !fired_ || t_ns - last_pulse_ns_ >= interval_ns;
 }

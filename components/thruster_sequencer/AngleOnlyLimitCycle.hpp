@@ -60,8 +60,20 @@ struct PulseTally {
 /// sensor: the angle comes from the side it was corrected on. The m pulses are one command
 /// and run to their end even if the angle leaves the range meanwhile; correction resumes
 /// after them. One instance per controlled axis.
+/// The limit cycle's memory (claim 4's n and where the cycle stands): a restart's checkpoint.
+struct AngleOnlyLimitCycleState {
+  LimitCyclePhase phase = LimitCyclePhase::kAcquiring;  // [-]
+  int side = 0;                                         // [-] +1 beyond A3, −1 beyond A2
+  int correction_count = 0;                             // [-] n
+  int braking_count = 0;                                // [-] m
+  int braking_remaining = 0;                            // [-] braking pulses still to fire
+  bool fired = false;                                   // [-] a pulse of the current phase fired
+  std::int64_t last_pulse_ns = 0;                       // [ns] sample time of that pulse
+};
+
 class AngleOnlyLimitCycle {
  public:
+  using State = AngleOnlyLimitCycleState;
   using Params = AngleOnlyLimitCycleParams;
   using Input = AngleOnlyLimitCycleInput;
   using Output = AngleOnlyLimitCycleOutput;
@@ -76,6 +88,11 @@ class AngleOnlyLimitCycle {
   Output step(const Input& in, std::int64_t t_ns);
 
   const Params& params() const { return params_; }
+
+  State state() const {
+    return {phase_, side_, correction_count_, braking_count_, braking_remaining_, fired_, last_pulse_ns_};
+  }
+  void restore(const State& state);
 
  private:
   bool pulseDue(std::int64_t t_ns, std::int64_t interval_ns) const;

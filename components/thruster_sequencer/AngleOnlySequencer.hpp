@@ -50,8 +50,15 @@ double angleAboutAxis_rad(const Eigen::Vector3d& sun_B, const Eigen::Vector3d& b
 /// the thruster selection turns a pulse's sense into on-times of couples, the pulse shaper
 /// fits them into steps. The rate change of a pulse follows from the thrusters and the
 /// inertia: δω = a·I⁻¹(τ t_on), τ the firing's torque.
+/// The sequencer's memory: the limit cycle's and the on-times still owed (a restart's checkpoint).
+struct AngleOnlySequencerState {
+  AngleOnlyLimitCycleState cycle;
+  sim::ThrusterVector owed_s = sim::ThrusterVector::Zero();  // [s] per thruster
+};
+
 class AngleOnlySequencer {
  public:
+  using State = AngleOnlySequencerState;
   using Params = AngleOnlySequencerParams;
   using Input = AngleOnlySequencerInput;
   using Output = AngleOnlySequencerOutput;
@@ -67,6 +74,12 @@ class AngleOnlySequencer {
   double pulseDeltaRate_rad_s(int sense) const;
 
   const Params& params() const { return params_; }
+
+  State state() const { return {cycle_.state(), shaper_.owed_s()}; }
+  void restore(const State& state) {
+    cycle_.restore(state.cycle);
+    shaper_.restore(state.owed_s);
+  }
 
  private:
   const ThrusterFiring& firing(int sense) const { return sense > 0 ? raise_ : lower_; }

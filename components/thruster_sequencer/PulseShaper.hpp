@@ -40,6 +40,8 @@ class PulseShaper {
 
   /// [s] on-time requested but not yet commanded, per thruster.
   const sim::ThrusterVector& owed_s() const { return owed_s_; }
+  /// Continues owing `owed_s` [s] (a checkpoint's).
+  void restore(const sim::ThrusterVector& owed_s) { owed_s_ = owed_s; }
 
  private:
   Params params_;

@@ -41,8 +41,15 @@ struct ThrusterMomentumDumpingOutput {
 /// external torque changes the total momentum; the attitude controller, holding the body
 /// still, takes the change out of the wheels. Pulses are sized by the duty and shaped by
 /// the pulse shaper (minimum on-time, remainder).
+/// The dumping's memory: whether a dump is under way, the on-times still owed (a checkpoint).
+struct ThrusterMomentumDumpingState {
+  bool dumping = false;                                      // [-] between h_start and h_stop
+  sim::ThrusterVector owed_s = sim::ThrusterVector::Zero();  // [s] per thruster
+};
+
 class ThrusterMomentumDumping {
  public:
+  using State = ThrusterMomentumDumpingState;
   using Params = ThrusterMomentumDumpingParams;
   using Output = ThrusterMomentumDumpingOutput;
 
@@ -53,6 +60,12 @@ class ThrusterMomentumDumping {
 
   /// Wheel speeds [rad/s] relative to the body; t_ns [ns] is kept for the common API.
   Output step(const Eigen::Vector4d& wheel_speed_rad_s, std::int64_t t_ns);
+
+  State state() const { return {dumping_, shaper_.owed_s()}; }
+  void restore(const State& state) {
+    dumping_ = state.dumping;
+    shaper_.restore(state.owed_s);
+  }
 
  private:
   Params params_;

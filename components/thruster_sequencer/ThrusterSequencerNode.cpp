@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "components/thruster_sequencer/ThrusterSequencerNode.hpp"
 
+#include "components/common/StateJson.hpp"
+
 #include "bus/Convert.hpp"
 #include "components/sun_sensor/SunSensorNode.hpp"
 #include "sim/DynamicsServerParams.hpp"
@@ -65,6 +67,46 @@ ThrusterSequencerNode::ThrusterSequencerNode(bus::Bus& bus, bus::NodeOptions opt
     dumping_.emplace(params.dumping);
     thruster_count_ = params.dumping.thrusters.size();
   }
+}
+
+nlohmann::json ThrusterSequencerNode::saveState() const {
+  if (dumping_) {
+    const auto s = dumping_->state();
+    return {{"dumping", s.dumping}, {"owed_s", state_json::matrix(s.owed_s)}};
+  }
+  const auto s = sequencer_->state();
+  return {{"phase", static_cast<int>(s.cycle.phase)},
+          {"side", s.cycle.side},
+          {"correction_count", s.cycle.correction_count},
+          {"braking_count", s.cycle.braking_count},
+          {"braking_remaining", s.cycle.braking_remaining},
+          {"fired", s.cycle.fired},
+          {"last_pulse_ns", s.cycle.last_pulse_ns},
+          {"owed_s", state_json::matrix(s.owed_s)}};
+}
+
+void ThrusterSequencerNode::restoreState(const nlohmann::json& j) {
+  if (dumping_) {
+    ThrusterMomentumDumpingState s;
+    s.dumping = j.at("dumping").get<bool>();
+    state_json::read(j, "owed_s", s.owed_s);
+    dumping_->restore(s);
+    return;
+  }
+  AngleOnlySequencerState s;
+  const int phase = j.at("phase").get<int>();
+  if (phase < 0 || phase > static_cast<int>(LimitCyclePhase::kHolding)) {
+    throw std::invalid_argument("phase: " + std::to_string(phase) + " is no limit-cycle phase");
+  }
+  s.cycle.phase = static_cast<LimitCyclePhase>(phase);
+  s.cycle.side = j.at("side").get<int>();
+  s.cycle.correction_count = j.at("correction_count").get<int>();
+  s.cycle.braking_count = j.at("braking_count").get<int>();
+  s.cycle.braking_remaining = j.at("braking_remaining").get<int>();
+  s.cycle.fired = j.at("fired").get<bool>();
+  s.cycle.last_pulse_ns = j.at("last_pulse_ns").get<std::int64_t>();
+  state_json::read(j, "owed_s", s.owed_s);
+  sequencer_->restore(s);
 }
 
 void ThrusterSequencerNode::step(const bus::StepContext& ctx) {

@@ -390,3 +390,71 @@ TEST_CASE("Thruster momentum dumping takes stored momentum from 90 % to under 10
   const double expected_s = (h0.norm() - p.h_stop_Nms) / (0.5 * std::sqrt(1.5));
   CHECK(steps * 0.1 == Approx(expected_s).margin(0.2));
 }
+
+TEST_CASE("S1: a restarted sequencer given the old one's state goes on with the same correction",
+          "[thruster_sequencer][restart]") {
+  // The worked example's double integrator, the sequencer restarted at several steps, each
+  // inside a different phase: the pulses are the uninterrupted run's, pulse for pulse.
+  const auto run = [](std::int64_t restart_at_step) {
+    AngleOnlySequencer sequencer(exampleSequencer());
+    const double dw = sequencer.pulseDeltaRate_rad_s(1);
+    double angle = 0.0, rate = 1.0 * kDeg;
+    std::vector<AngleOnlySequencerOutput> outputs;
+    for (std::int64_t k = 0; k <= 6000; ++k) {
+      if (restart_at_step > 0 && k % restart_at_step == 0) {
+        const auto checkpoint = sequencer.state();
+        sequencer = AngleOnlySequencer(exampleSequencer());
+        sequencer.restore(checkpoint);
+      }
+      const Eigen::Vector3d sun_B(std::cos(angle), 0.0, std::sin(angle));  // angleAboutAxis_rad gives `angle`
+      const auto out = sequencer.step({sun_B, true}, k * kNsPerS / 10);
+      outputs.push_back(out);
+      rate += out.cycle.pulse * dw;
+      angle += rate * 0.1;
+    }
+    return outputs;
+  };
+  const auto reference = run(0);
+  std::size_t pulses = 0;
+  for (const auto& o : reference) pulses += o.cycle.pulse != 0;
+  REQUIRE(pulses >= 20);
+  for (const std::int64_t every : {7, 93, 250}) {
+    CAPTURE(every);
+    const auto restarted = run(every);
+    std::size_t differing = 0;
+    for (std::size_t k = 0; k < reference.size(); ++k) {
+      const auto &a = reference[k].cycle, &b = restarted[k].cycle;
+      differing += a.pulse != b.pulse || a.phase != b.phase || a.correction_count != b.correction_count ||
+                   a.braking_count != b.braking_count || reference[k].on_time_s != restarted[k].on_time_s;
+    }
+    CHECK(differing == 0);
+  }
+}
+
+TEST_CASE("thruster momentum dumping restarted mid-dump goes on dumping with the on-time it owed",
+          "[thruster_sequencer][restart]") {
+  ThrusterMomentumDumpingParams p;
+  p.thrusters = yCouples();
+  p.wheels.count = 1;
+  p.wheels.axes_B.col(0) = Eigen::Vector3d::UnitY();
+  p.wheels.inertia_kg_m2 = Eigen::Vector4d(0.05, 0, 0, 0);
+  p.h_start_Nms = 1.0;
+  p.h_stop_Nms = 0.2;
+  p.step_s = 0.1;
+  ThrusterMomentumDumping uninterrupted(p), restarted(p);
+  Eigen::Vector4d speed(30.0, 0, 0, 0);  // 1.5 N m s: dumping starts
+  for (int k = 0; k < 3; ++k) {
+    uninterrupted.step(speed, k);
+    restarted.step(speed, k);
+  }
+  const auto checkpoint = restarted.state();
+  REQUIRE(checkpoint.dumping);
+  restarted = ThrusterMomentumDumping(p);
+  restarted.restore(checkpoint);
+  speed(0) = 10.0;  // 0.5 N m s: between stop and start, a fresh one would not fire
+  const auto a = uninterrupted.step(speed, 3);
+  const auto b = restarted.step(speed, 3);
+  CHECK(b.on_time_s == a.on_time_s);
+  CHECK(b.on_time_s.sum() > 0.0);
+  CHECK(ThrusterMomentumDumping(p).step(speed, 3).on_time_s.sum() == 0.0);
+}
