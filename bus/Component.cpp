@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "bus/Component.hpp"
 
+#include <thread>
+
 #include <spdlog/spdlog.h>
 
 #include "bus/Checkpoint.hpp"
@@ -13,6 +15,7 @@ Component::Component(Bus& bus, NodeOptions options)
                     [this](const msg::StepGrant& grant) {
                       {
                         std::lock_guard lock(mutex_);
+                        if (skip_through_ && grant.header().step() <= *skip_through_ && !grant.stop()) return;
                         grants_.push_back(grant);
                       }
                       changed_.notify_all();
@@ -45,13 +48,27 @@ void Component::restoreCheckpoint() {
   }
 }
 
+void Component::skipGrantsOfEarlierProcess() {
+  // The grants' transient-local history (up to 64) arrives in a burst on matching;
+  // a period later it is all in, and grants issued from then on are new.
+  std::this_thread::sleep_for(options_.period);
+  std::lock_guard lock(mutex_);
+  if (!grants_.empty()) skip_through_ = grants_.back().header().step();
+  grants_.clear();
+  if (skip_through_) {
+    spdlog::info("{}: restarted: steps only grants after step {} (the earlier process may have done those)",
+                 name(), *skip_through_);
+  }
+}
+
 void Component::start() {
-  if (options_.restore_checkpoint) restoreCheckpoint();
+  if (options_.restarted && !options_.checkpoint_file.empty()) restoreCheckpoint();
   waitForProducers();
   waitUntilNothingMissing(
       [this] { return grant_reader_.matchedWriters() == 0 ? " " + grant_reader_.topicName() : ""; },
       "waiting for the time master");
   divider_ = dividerOf(name());
+  if (options_.restarted) skipGrantsOfEarlierProcess();
   publishHealth(msg::ComponentState::READY, 0, "all producers matched");
   spdlog::info("{}: ready (divider {})", name(), divider_);
   next_health_ = std::chrono::steady_clock::now() + kHealthPeriod;

@@ -65,6 +65,12 @@ class Component : public Node {
   msg::StepGrant nextGrant();
   /// --restarted: the state of the checkpoint, if there is a usable one.
   void restoreCheckpoint();
+  /// --restarted: drops the grants issued before this process joined. Each may have
+  /// been stepped by the process it replaces, whose samples of that step are on the
+  /// bus and in the recording already: stepping it again would publish a second,
+  /// different sample of the same step.
+  void skipGrantsOfEarlierProcess();
+  std::optional<std::uint64_t> skip_through_;  // guarded by mutex_
   std::chrono::steady_clock::time_point next_health_;
   std::uint32_t divider_ = 1;  // this component's, from the schedule at start()
   std::deque<msg::StepGrant> grants_;

@@ -57,8 +57,9 @@ struct NodeOptions {
   /// (bus/Checkpoint.hpp); empty: nowhere.
   std::string checkpoint_file;
   /// A process started again mid-run (`flatsat run --restart`): it takes its state back
-  /// from checkpoint_file before its first step.
-  bool restore_checkpoint = false;
+  /// from checkpoint_file before its first step, and steps no grant its previous
+  /// process may have stepped.
+  bool restarted = false;
 };
 
 /// A FaultCmd addressed to the bus as a fault; every problem (empty: valid).
@@ -397,7 +398,11 @@ void Input<Def>::dropBefore(std::uint64_t k) {
   if (!stamp) return;
   std::lock_guard lock(mutex_);
   consumed_before_ = std::max(consumed_before_, *stamp);
-  samples_.erase(samples_.begin(), samples_.lower_bound(*stamp));
+  auto end = samples_.lower_bound(*stamp);
+  // Paced, the newest sample stays until a newer one arrives: a late or dead
+  // producer's last value is held (stale) for the steps after, not just one.
+  if (node_.paced() && end != samples_.begin() && (end == samples_.end() || end->first != *stamp)) --end;
+  samples_.erase(samples_.begin(), end);
 }
 
 }  // namespace flatsat::bus

@@ -50,8 +50,8 @@ NodeOptions nodeOptions(const Scenario& scenario, const NodeArgs& args) {
     const auto folder = std::filesystem::path(args.out_dir) / "checkpoints";
     std::filesystem::create_directories(folder);
     options.checkpoint_file = (folder / (args.name + ".json")).string();
-    options.restore_checkpoint = args.restarted;
   }
+  options.restarted = args.restarted;
   return options;
 }
 

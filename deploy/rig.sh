@@ -86,7 +86,10 @@ case "$cmd" in
     deps "${test_packages[@]}"; build
     start_docker
     cd "$build"
-    exec ctest --output-on-failure -j"$jobs" --timeout 1500
+    # One slot more than cores: the soak (no core of the resource spec) runs beside
+    # $jobs tests, each of which holds a core.
+    exec ctest --output-on-failure -j"$((jobs + 1))" --timeout 1500 \
+      --resource-spec-file "$here/tests/ctest-resources.json"
     ;;
   *) echo "usage: $0 run [SCENARIO] [options] | test | fuzz [SECONDS] | build | deps" >&2; exit 2 ;;
 esac

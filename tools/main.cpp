@@ -39,6 +39,7 @@
 #include "tools/Resume.hpp"
 #include "tools/RunDirectory.hpp"
 #include "tools/ShmClean.hpp"
+#include "tools/SoakCommand.hpp"
 #include "tools/StudyCommand.hpp"
 #include "tools/Summary.hpp"
 #include "tools/TopicsCommand.hpp"
@@ -448,6 +449,8 @@ int main(int argc, char** argv) {
   auto* field_cmd = tools::addFieldCommand(app, field_exit);
   int study_exit = 0;
   auto* study_cmd = tools::addStudyCommand(app, study_exit);
+  int soak_exit = 0;
+  auto* soak_cmd = tools::addSoakCommand(app, soak_exit);
   int mc_exit = 0;
   auto* mc_cmd = tools::addMcCommand(app, mc_exit);
   int tool_exit = 0;
@@ -472,6 +475,7 @@ int main(int argc, char** argv) {
   if (orbit_cmd->parsed()) return orbit_exit;
   if (field_cmd->parsed()) return field_exit;
   if (study_cmd->parsed()) return study_exit;
+  if (soak_cmd->parsed()) return soak_exit;
   if (mc_cmd->parsed()) return mc_exit;
   for (auto* tool : tool_cmds) {
     if (tool->parsed()) return tool_exit;

@@ -83,7 +83,9 @@ TEST_CASE("paced: a component killed mid-run is shown dead within the lease and 
   // started after it could not get the dead writer's last sample).
   const std::string watch_log = out + "-health.log";
   test::Background watch(test::kFlatsat + " health --json", watch_log);
-  std::this_thread::sleep_for(std::chrono::seconds(3));
+  // Killed once the table shows it (discovery takes up to 3 s when a first
+  // participant announcement is lost).
+  REQUIRE(test::waitForText(watch_log, "\"component\":\"wheel_tach\"", 20, watch));
   rigs.tach->signal(SIGKILL);
   std::this_thread::sleep_for(std::chrono::milliseconds(4500));  // the 3 s lease and a table line
   watch.signal(SIGTERM);
@@ -93,6 +95,23 @@ TEST_CASE("paced: a component killed mid-run is shown dead within the lease and 
   const auto last_line = table.rfind("\n[", table.size() - 2);
   REQUIRE(last_line != std::string::npos);
   const auto rows = nlohmann::json::parse(table.substr(last_line + 1));
+  // The attitude controller, a consumer of the tachometers, goes on with their
+  // last sample (stale) after the kill: it steps on to the table's last line.
+  std::uint64_t controller_at_kill = 0, controller_last = 0;
+  std::stringstream lines(table);
+  for (std::string line; std::getline(lines, line);) {
+    if (line.empty() || line.front() != '[') continue;
+    bool tach_alive = true;
+    std::uint64_t controller = 0;
+    for (const auto& row : nlohmann::json::parse(line)) {
+      if (row["component"] == "wheel_tach") tach_alive = row["alive"].get<bool>();
+      if (row["component"] == "attitude_controller") controller = row["steps_done"].get<std::uint64_t>();
+    }
+    if (!tach_alive && controller_at_kill == 0) controller_at_kill = controller;
+    controller_last = controller;
+  }
+  CHECK(controller_at_kill > 0);
+  CHECK(controller_last >= controller_at_kill + 10);
   bool tach_seen = false;
   for (const auto& row : rows) {
     if (row["component"] == "wheel_tach") {
@@ -132,7 +151,8 @@ TEST_CASE("paced: a component whose steps stop is shown late within its deadline
   REQUIRE(test::waitForText(fs::path(out) / "logs" / "dynamics_server.log", "every component ready", 60, rig));
   const std::string watch_log = out + "-health.log";
   test::Background watch(test::kFlatsat + " health --json --every 0.2", watch_log);
-  std::this_thread::sleep_for(std::chrono::seconds(3));
+  REQUIRE(test::waitForText(watch_log, "\"component\":\"gyro\"", 20, watch));
+  std::this_thread::sleep_for(std::chrono::seconds(2));
   // SIGSTOP halts the whole process for 1.8 s: longer than the gyro topic's
   // 1 s deadline and kHealthLate (1.5 s), shorter than the 3 s health lease
   // less the 1 s between liveliness assertions, so it is late, not lost.
