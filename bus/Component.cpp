@@ -34,6 +34,7 @@ void Component::run() {
 }
 
 void Component::restoreCheckpoint() {
+  if (saveState().is_null()) return;  // nothing to take back: it keeps no state
   try {
     const auto checkpoint = readCheckpoint(options_.checkpoint_file, name());
     if (!checkpoint) {
@@ -51,10 +52,17 @@ void Component::restoreCheckpoint() {
 void Component::skipGrantsOfEarlierProcess() {
   // The grants' transient-local history (up to 64) arrives in a burst on matching;
   // a period later it is all in, and grants issued from then on are new.
-  std::this_thread::sleep_for(options_.period);
+  std::this_thread::sleep_for(std::max<std::chrono::nanoseconds>(options_.period, std::chrono::milliseconds(200)));
   std::lock_guard lock(mutex_);
-  if (!grants_.empty()) skip_through_ = grants_.back().header().step();
-  grants_.clear();
+  std::deque<msg::StepGrant> kept;  // the stop grant, when the run ended meanwhile
+  for (const auto& grant : grants_) {
+    if (grant.stop()) {
+      kept.push_back(grant);
+    } else {
+      skip_through_ = std::max(skip_through_.value_or(0), grant.header().step());
+    }
+  }
+  grants_.swap(kept);
   if (skip_through_) {
     spdlog::info("{}: restarted: steps only grants after step {} (the earlier process may have done those)",
                  name(), *skip_through_);
@@ -68,7 +76,7 @@ void Component::start() {
       [this] { return grant_reader_.matchedWriters() == 0 ? " " + grant_reader_.topicName() : ""; },
       "waiting for the time master");
   divider_ = dividerOf(name());
-  if (options_.restarted) skipGrantsOfEarlierProcess();
+  if (options_.restarted && paced()) skipGrantsOfEarlierProcess();
   publishHealth(msg::ComponentState::READY, 0, "all producers matched");
   spdlog::info("{}: ready (divider {})", name(), divider_);
   next_health_ = std::chrono::steady_clock::now() + kHealthPeriod;

@@ -175,6 +175,16 @@ class Reader : private eprosima::fastdds::dds::DataReaderListener {
   }
   const std::string& topicName() const { return name_; }
 
+  /// Requests a longer deadline than the QoS preset's (a producer slower than the
+  /// lease); the writers' offered one stays compatible. Nothing in process.
+  void requestDeadline(std::chrono::nanoseconds period) {
+    if (reader_ == nullptr) return;
+    auto qos = reader_->get_qos();
+    qos.deadline().period = eprosima::fastrtps::Duration_t(static_cast<int32_t>(period.count() / 1'000'000'000),
+                                                           static_cast<uint32_t>(period.count() % 1'000'000'000));
+    reader_->set_qos(qos);
+  }
+
  private:
   void on_data_available(eprosima::fastdds::dds::DataReader* reader) override {
     Sample sample;

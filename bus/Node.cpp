@@ -178,8 +178,8 @@ void Node::publishHealth(msg::ComponentState state, std::uint64_t steps_done,
 
 void Node::inputLate(const std::string& topic, const std::string& producer) {
   const std::uint64_t missed = ++deadlines_missed_;
-  spdlog::warn("{}: {} from {} is late: nothing within its deadline ({} ms); {} deadline(s) missed so far", name(),
-               topic, producer.empty() ? "its producer" : producer, bus_.tuning().lease.count(), missed);
+  spdlog::warn("{}: {} from {} is late: nothing within its deadline; {} deadline(s) missed so far", name(), topic,
+               producer.empty() ? "its producer" : producer, missed);
 }
 
 void Node::publishLastHealth(msg::ComponentState state, std::uint64_t steps_done,

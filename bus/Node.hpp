@@ -153,6 +153,7 @@ class Input final : public InputBase {
   mutable std::mutex mutex_;
   std::map<std::uint64_t, Sample> samples_;
   std::uint64_t consumed_before_ = 0;  ///< steps below this were dropped (dropBefore)
+  std::uint64_t hold_steps_ = 1;       ///< paced: steps a last sample is held for (the lease)
   Reader<Def> reader_;
 };
 
@@ -343,7 +344,15 @@ Input<Def>::Input(Node& node, const Def& def, std::uint32_t producer_divider, Ob
       },
       {},
       node.paced() ? [this](const std::string& source) { node_.inputLate(topicName(), source); }
-                   : typename Reader<Def>::DeadlineCallback{}) {}
+                   : typename Reader<Def>::DeadlineCallback{}) {
+  // The deadline is the lease, or one and a half of the producer's own period when
+  // that is longer (a 1 Hz command against a 1 s lease is not late every period).
+  const auto producer_period = std::chrono::duration_cast<std::chrono::nanoseconds>(
+      1.5 * producer_divider * node.options_.period);
+  if (node.paced() && producer_period > node.bus_.tuning().lease) reader_.requestDeadline(producer_period);
+  const auto lease_steps = static_cast<std::uint64_t>(node.bus_.tuning().lease / node.options_.period);
+  hold_steps_ = std::max<std::uint64_t>(producer_divider, lease_steps);
+}
 
 template <class Def>
 bool Input<Def>::resent(const Sample& sample) const {
@@ -399,9 +408,13 @@ void Input<Def>::dropBefore(std::uint64_t k) {
   std::lock_guard lock(mutex_);
   consumed_before_ = std::max(consumed_before_, *stamp);
   auto end = samples_.lower_bound(*stamp);
-  // Paced, the newest sample stays until a newer one arrives: a late or dead
-  // producer's last value is held (stale) for the steps after, not just one.
-  if (node_.paced() && end != samples_.begin() && (end == samples_.end() || end->first != *stamp)) --end;
+  // Paced, the newest sample stays until a newer one arrives: a late producer's
+  // last value is held (stale) for the steps after, up to the lease, after which
+  // its producer counts as dead (liveliness_lease_s) and nothing is held.
+  if (node_.paced() && end != samples_.begin() && (end == samples_.end() || end->first != *stamp) &&
+      *stamp - std::prev(end)->first <= hold_steps_) {
+    --end;
+  }
   samples_.erase(samples_.begin(), end);
 }
 

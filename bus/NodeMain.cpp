@@ -18,6 +18,8 @@ NodeArgs parseNodeArgs(int argc, char** argv, const std::string& default_name) {
   app.add_option("--name", args.name, "component name in the scenario");
   app.add_option("--out", args.out_dir, "run directory");
   app.add_option("--log", level, "log level: trace, debug, info, warn, error");
+  app.add_flag("--checkpoint", args.checkpoint,
+               "keep the state in <out>/checkpoints/ after each step (flatsat run --restart)");
   app.add_flag("--restarted", args.restarted,
                "started again mid-run (flatsat run --restart): take the state back from <out>/checkpoints/");
   try {
@@ -46,10 +48,12 @@ NodeOptions nodeOptions(const Scenario& scenario, const std::string& name) {
 NodeOptions nodeOptions(const Scenario& scenario, const NodeArgs& args) {
   NodeOptions options = nodeOptions(scenario, args.name);
   // Only a paced run restarts a component (a lockstep one resumes from its recording).
-  if (scenario.pacing == Pacing::kPaced && !args.out_dir.empty()) {
+  if (scenario.pacing == Pacing::kPaced && !args.out_dir.empty() && (args.checkpoint || args.restarted)) {
     const auto folder = std::filesystem::path(args.out_dir) / "checkpoints";
     std::filesystem::create_directories(folder);
     options.checkpoint_file = (folder / (args.name + ".json")).string();
+    // A first start never takes a checkpoint left by an earlier run in this folder.
+    if (!args.restarted) std::filesystem::remove(options.checkpoint_file);
   }
   options.restarted = args.restarted;
   return options;

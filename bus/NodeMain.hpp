@@ -18,7 +18,8 @@ struct NodeArgs {
   std::string scenario;  ///< scenario file
   std::string name;      ///< component name in the scenario
   std::string out_dir;   ///< run directory (recordings, logs)
-  bool restarted = false;  ///< started again mid-run: take the state back from its checkpoint
+  bool checkpoint = false;  ///< keep a checkpoint of the state (a run that restarts components)
+  bool restarted = false;   ///< started again mid-run: take the state back from its checkpoint
 };
 
 /// Parses `--scenario FILE [--name NAME] [--out DIR] [--log LEVEL]`, sets up
@@ -27,8 +28,9 @@ NodeArgs parseNodeArgs(int argc, char** argv, const std::string& default_name);
 
 /// Everything a node needs from the scenario besides its own parameters.
 NodeOptions nodeOptions(const Scenario& scenario, const std::string& name);
-/// The same, with the checkpoint a paced process with a run directory keeps
-/// (<out>/checkpoints/<name>.json) and whether it restores it (--restarted).
+/// The same, with the checkpoint a paced process with a run directory keeps when
+/// asked (--checkpoint, --restarted: <out>/checkpoints/<name>.json) and whether it
+/// restores it (--restarted).
 NodeOptions nodeOptions(const Scenario& scenario, const NodeArgs& args);
 /// The participant's QoS tuning in this scenario, at the given ownership strength.
 QosTuning qosTuning(const Scenario& scenario, std::int32_t ownership_strength);

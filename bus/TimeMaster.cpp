@@ -71,6 +71,7 @@ void TimeMaster::livelinessChanged(const std::string& component, bool alive) {
       spdlog::info("{}: {} is alive again", name(), component);
     } else {
       lost_.insert(component);
+      late_.erase(component);  // gone, not late
       spdlog::warn("{}: {} lost its liveliness ({} ms without a sign of life)", name(), component,
                    kHealthLease.count());
     }
@@ -155,7 +156,12 @@ void TimeMaster::waitForTick(std::chrono::steady_clock::time_point tick) {
 void TimeMaster::findLate(std::chrono::steady_clock::time_point now) {
   for (const auto& [component, arrived] : health_arrived_) {
     const auto state = states_.find(component);
-    if (component == name() || now - arrived <= kHealthLate || late_.count(component) != 0 ||
+    // Health comes with a grant the component is due for: every kHealthPeriod, or
+    // every divider periods when that is longer.
+    const auto divider = options_.schedule.count(component) != 0 ? options_.schedule.at(component) : 1U;
+    const auto late_after = std::max<std::chrono::nanoseconds>(
+        kHealthLate, std::chrono::duration_cast<std::chrono::nanoseconds>(kHealthPeriod + 1.5 * divider * options_.period));
+    if (component == name() || now - arrived <= late_after || late_.count(component) != 0 ||
         lost_.count(component) != 0 || state == states_.end() || state->second != msg::ComponentState::RUNNING) {
       continue;
     }

@@ -88,8 +88,9 @@ case "$cmd" in
     cd "$build"
     # One slot more than cores: the soak (no core of the resource spec) runs beside
     # $jobs tests, each of which holds a core.
-    exec ctest --output-on-failure -j"$((jobs + 1))" --timeout 1500 \
-      --resource-spec-file "$here/tests/ctest-resources.json"
+    printf '{"version": {"major": 1, "minor": 0}, "local": [{"cores": [{"id": "0", "slots": %d}]}]}\n' \
+      "$jobs" > ctest-resources.json
+    exec ctest --output-on-failure -j"$((jobs + 1))" --timeout 1500 --resource-spec-file ctest-resources.json
     ;;
   *) echo "usage: $0 run [SCENARIO] [options] | test | fuzz [SECONDS] | build | deps" >&2; exit 2 ;;
 esac

@@ -106,8 +106,13 @@ void DynamicsServerNode::advance(const bus::StepContext& ctx) {
     cmd.flap_angle_rad = bus::vec4(flap_cmd_->at(ctx.step).theta_rad());
   }
   if (thruster_cmd_ != nullptr && thruster_cmd_->hasAny(ctx.step)) {
-    const auto on_time_s = thruster_cmd_->at(ctx.step).on_time_s();
-    cmd.thruster_on_time_s = Eigen::Map<const ThrusterVector>(on_time_s.data());
+    // On-times are pulses of their step: one held (paced, a late or dead
+    // sequencer) is not fired again; one late fires once, when it comes.
+    const auto thrusters = thruster_cmd_->at(ctx.step);
+    if (!thruster_cmd_fired_ || thrusters.header().step() > *thruster_cmd_fired_) {
+      thruster_cmd_fired_ = thrusters.header().step();
+      cmd.thruster_on_time_s = Eigen::Map<const ThrusterVector>(thrusters.on_time_s().data());
+    }
   }
   fault_port_.take(ctx, [this](const ActuatorFault& fault) { return faults_.add(fault); });
   const std::uint32_t active = faults_.apply(cmd, ctx.sim_time_ns);

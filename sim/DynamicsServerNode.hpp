@@ -1,5 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #pragma once
+#include <optional>
+
 #include "bus/FaultPort.hpp"
 #include "bus/TimeMaster.hpp"
 #include "sim/DynamicsServerParams.hpp"
@@ -21,6 +23,7 @@ class DynamicsServerNode final : public bus::TimeMaster {
   bus::InputOf<bus::topics::kDipoleCmd>* dipole_cmd_ = nullptr;      // if torquers are driven
   bus::InputOf<bus::topics::kFlapCmd>* flap_cmd_ = nullptr;          // if flaps are fitted and driven
   bus::InputOf<bus::topics::kThrusterCmd>* thruster_cmd_ = nullptr;  // if a thruster sequencer runs
+  std::optional<std::uint64_t> thruster_cmd_fired_;  // step of the last command fired: each fires once
   static constexpr std::int64_t kNoCommand = -1;
   std::int64_t wheel_cmd_age_steps_ = kNoCommand;   // of the command held over the last step
   std::int64_t dipole_cmd_age_steps_ = kNoCommand;

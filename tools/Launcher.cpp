@@ -224,12 +224,14 @@ LaunchResult launch(const bus::Scenario& scenario, const LaunchOptions& options)
     } else if (kind == "lost") {
       spdlog::warn("{} lost its liveliness at step {}: its process is gone", component, e.header().step());
     } else {
-      spdlog::warn("{} is late at step {}: no health for {} ms", component, e.header().step(),
+      spdlog::warn("{} is late at step {}: no health for at least {} ms", component, e.header().step(),
                    bus::kHealthLate.count());
     }
   });
   std::vector<Child> children;
   std::vector<const bus::ComponentEntry*> late;  // bridges that start after a delay
+  // --restart: the time master owns simulated time and cannot come back mid-run.
+  const bool may_restart = options.restart && scenario.pacing == bus::Pacing::kPaced;
   const auto spawn = [&](Child& child) {
     const auto* kind = findComponentKind(child.name);
     std::vector<std::string> argv;
@@ -239,7 +241,7 @@ LaunchResult launch(const bus::Scenario& scenario, const LaunchOptions& options)
     argv.insert(argv.end(), {(fs::path(options.bin_dir) / kind->executable).string(), "--scenario",
                              options.scenario_file, "--name", child.name, "--out",
                              options.run_dir, "--log", options.log_level});
-    if (child.restarted) argv.push_back("--restarted");
+    if (may_restart) argv.push_back(child.restarted ? "--restarted" : "--checkpoint");
     child.pid = spawnLogged(argv, child.log);
     child.running = true;
     spdlog::debug("started {} (pid {})", child.name, child.pid);
@@ -250,12 +252,11 @@ LaunchResult launch(const bus::Scenario& scenario, const LaunchOptions& options)
     spawn(child);
     children.push_back(child);
   };
-  // --restart: the time master owns simulated time and cannot come back mid-run.
-  const bool may_restart = options.restart && scenario.pacing == bus::Pacing::kPaced;
   bus::WriterOf<bus::topics::kFaultEvent> restart_events(bus, bus::topics::kFaultEvent);
   const auto restartChild = [&](Child& c, int status) {
     const int n = ++result.restarts[c.name];
-    spdlog::warn("{} died ({}); starting it again ({} of at most {})", c.name, describeExit(status), n, kMaxRestarts);
+    spdlog::warn("{} died ({}); starting it again ({} of at most {})", c.name, describeExit(status), n,
+                 options.max_restarts);
     msg::FaultEvent event;
     const std::uint64_t step = progress.steps();
     event.header(bus::makeHeader({step, static_cast<std::int64_t>(step) * std::llround(scenario.step_s * 1e9), 0},
@@ -319,7 +320,7 @@ LaunchResult launch(const bus::Scenario& scenario, const LaunchOptions& options)
       }
       const bool died = !(WIFEXITED(status) && WEXITSTATUS(status) == 0);
       if (died && may_restart && c.name != "dynamics_server" && !rigStopping() &&
-          result.restarts[c.name] < kMaxRestarts) {
+          result.restarts[c.name] < options.max_restarts) {
         restartChild(c, status);
         continue;
       }

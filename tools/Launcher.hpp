@@ -28,12 +28,13 @@ struct LaunchOptions {
   /// `ssh box`): the argv words put before the executable and its arguments
   std::map<std::string, std::vector<std::string>> prefixes;
   /// Paced runs: a component that dies (not the dynamics server) is started
-  /// again, up to kMaxRestarts times; each restart is recorded as a FaultEvent
+  /// again, up to max_restarts times; each restart is recorded as a FaultEvent
   /// (kind "restarted", from the component) and logged to logs/<name>.restart-N.log.
+  /// Every component keeps a checkpoint of its state for that (bus/Checkpoint.hpp).
   bool restart = false;
+  int max_restarts = 20;  ///< [-] per component and run, >= 1
 };
 
-inline constexpr int kMaxRestarts = 20;  ///< [-] per component and run
 
 struct LaunchResult {
   bool ok = false;

@@ -132,7 +132,7 @@ int runSoak(const SoakOptions& o) {
   fs::create_directories(run_dir);
   const double duration_s = o.minutes * 60.0;
   std::vector<std::string> argv{fs::canonical("/proc/self/exe").string(), "run", o.scenario, "-q", "--no-plots",
-                                "--restart", "--out", run_dir, "--set", "mode=paced", "--set",
+                                "--restart", "--max-restarts", "1000000", "--out", run_dir, "--set", "mode=paced", "--set",
                                 "duration_orbits=null", "--set", "duration_s=" + std::to_string(duration_s)};
   for (const auto& s : o.overrides) argv.insert(argv.end(), {"--set", s});
   RunProcess run{spawnLogged(argv, run_dir + ".log")};

@@ -83,6 +83,7 @@ struct RunOptions {
   bool composed = false;  // every component in this process, in-process bus (tools/Composed.hpp)
   std::string resume;     // --resume DIR: a killed lockstep run goes on (tools/Resume.hpp)
   bool restart = false;   // --restart: paced, a component that dies is started again
+  int max_restarts = 20;  // --max-restarts
 };
 
 /// `--prefix COMPONENT=COMMAND` into component -> argv words. `*` stands
@@ -238,6 +239,7 @@ int run(const RunOptions& o, nlohmann::ordered_json* summary_out = nullptr) {
     return kExitBadInput;
   }
   launch_options.restart = o.restart;
+  launch_options.max_restarts = o.max_restarts;
   if (!o.secure.empty() && !enableSecurity(o.secure, scenario)) return kExitBadInput;
   if (o.composed && !o.quiet) {
     std::cerr << "flatsat: running '" << scenario.name << "' composed (" << scenario.components.size()
@@ -410,6 +412,9 @@ int main(int argc, char** argv) {
                     "skip the review figures (default: flatsat plot into <run>/plots)");
   run_cmd->add_flag("--restart", run_options.restart,
                     "paced: start a component that dies again (not the dynamics server), recorded");
+  run_cmd->add_option("--max-restarts", run_options.max_restarts, "--restart: at most this often per component")
+      ->check(CLI::Range(1, 1000000))
+      ->capture_default_str();
   run_cmd->add_option("--resume", run_options.resume,
                       "go on with the killed lockstep run in this directory from its last complete step");
   run_cmd->add_flag("--composed", run_options.composed,

@@ -72,7 +72,9 @@ ThrusterSequencerNode::ThrusterSequencerNode(bus::Bus& bus, bus::NodeOptions opt
 nlohmann::json ThrusterSequencerNode::saveState() const {
   if (dumping_) {
     const auto s = dumping_->state();
-    return {{"dumping", s.dumping}, {"owed_s", state_json::matrix(s.owed_s)}};
+    return {{"dumping", s.dumping},
+            {"owed_s", state_json::matrix(s.owed_s)},
+            {"last_wheel_speed_rad_s", state_json::matrix(last_speed_rad_s_)}};
   }
   const auto s = sequencer_->state();
   return {{"phase", static_cast<int>(s.cycle.phase)},
@@ -90,6 +92,7 @@ void ThrusterSequencerNode::restoreState(const nlohmann::json& j) {
     ThrusterMomentumDumpingState s;
     s.dumping = j.at("dumping").get<bool>();
     state_json::read(j, "owed_s", s.owed_s);
+    state_json::read(j, "last_wheel_speed_rad_s", last_speed_rad_s_);
     dumping_->restore(s);
     return;
   }

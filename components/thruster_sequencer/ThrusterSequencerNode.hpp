@@ -26,8 +26,9 @@ class ThrusterSequencerNode final : public bus::Component {
 
  private:
   void step(const bus::StepContext& ctx) override;
-  /// The limit cycle's phase and counts (claim 4's n) or the dump under way, and the
-  /// on-times still owed: a restarted sequencer goes on with the correction it was in.
+  /// The limit cycle's phase and counts (claim 4's n) or the dump under way with the
+  /// last valid wheel speeds, and the on-times still owed: a restarted sequencer goes
+  /// on with the correction it was in.
   nlohmann::json saveState() const override;
   void restoreState(const nlohmann::json& state) override;
 

@@ -28,9 +28,9 @@ TEST_CASE("soak: random SIGKILL and restart of components for minutes, nothing l
                                      "/default.yaml --minutes " + std::to_string(minutes) +
                                      " --kill-every-s 3 8 --seed " + std::to_string(::getpid()) + " --out " + out);
   INFO(soak.output);
-  CHECK(soak.exit_code == 0);
+  REQUIRE(soak.exit_code == 0);
   const auto report = nlohmann::json::parse(test::readFile(fs::path(out) / "soak.json"));
-  CHECK(report["failed"].empty());
+  REQUIRE(report["failed"].empty());
   int kills = 0;
   for (const auto& [name, c] : report["components"].items()) {
     CAPTURE(name);
