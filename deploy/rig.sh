@@ -86,8 +86,8 @@ case "$cmd" in
     deps "${test_packages[@]}"; build
     start_docker
     cd "$build"
-    # One slot more than cores: the soak (no core of the resource spec) runs beside
-    # $jobs tests, each of which holds a core.
+    # Every test holds a core of this resource spec, so $jobs run at once; the
+    # one slot more is for the soak, which holds none, once it is back in.
     printf '{"version": {"major": 1, "minor": 0}, "local": [{"cores": [{"id": "0", "slots": %d}]}]}\n' \
       "$jobs" > ctest-resources.json
     # The soak (ctest -L soak) is not part of it yet: under the suite's load a
