@@ -10,12 +10,16 @@ namespace flatsat::bus {
 
 namespace fs = std::filesystem;
 
-void writeCheckpoint(const std::string& file, const std::string& component, std::uint64_t step,
-                     const nlohmann::json& state) {
+void writeCheckpoint(const std::string& file, const std::string& component, const Checkpoint& checkpoint) {
   const std::string temporary = file + ".tmp";
   {
     std::ofstream out(temporary, std::ios::trunc);
-    out << nlohmann::json{{"component", component}, {"step", step}, {"state", state}}.dump() << "\n";
+    out << nlohmann::json{{"component", component},
+                          {"step", checkpoint.step},
+                          {"state", checkpoint.state},
+                          {"claimed", checkpoint.claimed}}
+               .dump()
+        << "\n";
     if (!out) throw std::runtime_error(temporary + ": cannot write the checkpoint");
   }
   if (std::rename(temporary.c_str(), file.c_str()) != 0) {
@@ -32,14 +36,22 @@ std::optional<Checkpoint> readCheckpoint(const std::string& file, const std::str
   } catch (const nlohmann::json::exception& e) {
     throw std::runtime_error(file + ": not a checkpoint: " + e.what());
   }
-  if (!json.is_object() || !json.contains("component") || !json.contains("step") || !json.contains("state")) {
-    throw std::runtime_error(file + ": not a checkpoint: needs component, step and state");
+  for (const char* key : {"component", "step", "state", "claimed"}) {
+    if (!json.is_object() || !json.contains(key)) {
+      throw std::runtime_error(file + ": not a checkpoint: needs component, step, state and claimed");
+    }
   }
   if (json["component"] != component) {
     throw std::runtime_error(file + ": the checkpoint of '" + json["component"].dump() + "', not of '" +
                              component + "'");
   }
-  return Checkpoint{json["step"].get<std::uint64_t>(), json["state"]};
+  try {
+    Checkpoint checkpoint{json["step"].get<std::uint64_t>(), json["state"], json["claimed"].get<std::uint64_t>()};
+    if (checkpoint.claimed < checkpoint.step) throw std::runtime_error("claimed is before step");
+    return checkpoint;
+  } catch (const std::exception& e) {
+    throw std::runtime_error(file + ": not a checkpoint: " + e.what());
+  }
 }
 
 }  // namespace flatsat::bus

@@ -1,11 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "bus/Component.hpp"
 
-#include <thread>
-
 #include <spdlog/spdlog.h>
 
-#include "bus/Checkpoint.hpp"
 
 namespace flatsat::bus {
 
@@ -34,38 +31,51 @@ void Component::run() {
 }
 
 void Component::restoreCheckpoint() {
-  if (saveState().is_null()) return;  // nothing to take back: it keeps no state
+  std::optional<Checkpoint> checkpoint;
   try {
-    const auto checkpoint = readCheckpoint(options_.checkpoint_file, name());
-    if (!checkpoint) {
-      spdlog::warn("{}: restarted, but {} holds no checkpoint: starting afresh", name(), options_.checkpoint_file);
-      return;
-    }
+    checkpoint = readCheckpoint(options_.checkpoint_file, name());
+  } catch (const std::exception& e) {
+    spdlog::error("{}: restarted, its checkpoint is unusable, starting afresh: {}", name(), e.what());
+    return;
+  }
+  if (!checkpoint) {  // the process it replaces died before it claimed a step: none is on the bus
+    spdlog::warn("{}: restarted, but {} holds no checkpoint: starting afresh", name(), options_.checkpoint_file);
+    return;
+  }
+  skipGrantsThrough(checkpoint->claimed);
+  if (checkpoint->state.is_null() || saveState().is_null()) {
+    checkpoint_ = Checkpoint{checkpoint->step, nullptr, checkpoint->claimed};
+    return;
+  }
+  try {
     restoreState(checkpoint->state);
+    checkpoint_ = *checkpoint;
     spdlog::info("{}: restarted with the state it had after step {} ({})", name(), checkpoint->step,
                  options_.checkpoint_file);
   } catch (const std::exception& e) {
-    spdlog::error("{}: restarted, its checkpoint is unusable, starting afresh: {}", name(), e.what());
+    spdlog::error("{}: restarted, the state in {} is unusable, starting afresh: {}", name(),
+                  options_.checkpoint_file, e.what());
+    checkpoint_ = Checkpoint{0, nullptr, checkpoint->claimed};
   }
 }
 
-void Component::skipGrantsOfEarlierProcess() {
-  // The grants' transient-local history (up to 64) arrives in a burst on matching;
-  // a period later it is all in, and grants issued from then on are new.
-  std::this_thread::sleep_for(std::max<std::chrono::nanoseconds>(options_.period, std::chrono::milliseconds(200)));
+void Component::skipGrantsThrough(std::uint64_t claimed) {
   std::lock_guard lock(mutex_);
-  std::deque<msg::StepGrant> kept;  // the stop grant, when the run ended meanwhile
-  for (const auto& grant : grants_) {
-    if (grant.stop()) {
-      kept.push_back(grant);
-    } else {
-      skip_through_ = std::max(skip_through_.value_or(0), grant.header().step());
-    }
-  }
-  grants_.swap(kept);
-  if (skip_through_) {
-    spdlog::info("{}: restarted: steps only grants after step {} (the earlier process may have done those)",
-                 name(), *skip_through_);
+  skip_through_ = claimed;
+  // The grants' transient-local history may have come in already.
+  std::erase_if(grants_, [claimed](const msg::StepGrant& grant) {
+    return !grant.stop() && grant.header().step() <= claimed;
+  });
+  spdlog::info("{}: restarted: steps only grants after step {}, the newest its earlier process began", name(),
+               claimed);
+}
+
+void Component::keepCheckpoint() {
+  try {
+    writeCheckpoint(options_.checkpoint_file, name(), checkpoint_);
+  } catch (const std::exception& e) {  // the run matters more than a later restart
+    spdlog::error("{}: no more checkpoints: {}", name(), e.what());
+    options_.checkpoint_file.clear();
   }
 }
 
@@ -76,7 +86,6 @@ void Component::start() {
       [this] { return grant_reader_.matchedWriters() == 0 ? " " + grant_reader_.topicName() : ""; },
       "waiting for the time master");
   divider_ = dividerOf(name());
-  if (options_.restarted && paced()) skipGrantsOfEarlierProcess();
   publishHealth(msg::ComponentState::READY, 0, "all producers matched");
   spdlog::info("{}: ready (divider {})", name(), divider_);
   next_health_ = std::chrono::steady_clock::now() + kHealthPeriod;
@@ -120,19 +129,22 @@ bool Component::handle(const msg::StepGrant& grant) {
   }
   granted_ = ctx.step;
   if (ctx.step % divider_ == 0 && waitForInputs(ctx.step)) {
+    // Claimed before any output of the step can reach the bus, so a process
+    // killed mid-step is never followed by one that publishes the step again.
+    if (!options_.checkpoint_file.empty()) {
+      checkpoint_.claimed = ctx.step;
+      keepCheckpoint();
+    }
     step(ctx);
     msg::StepDone done;
     done.header(makeHeader(ctx, name()));
     done_.write(done);
     ++steps_done_;
     if (!options_.checkpoint_file.empty()) {
-      try {
-        if (const auto state = saveState(); !state.is_null()) {
-          writeCheckpoint(options_.checkpoint_file, name(), ctx.step, state);
-        }
-      } catch (const std::exception& e) {  // the run matters more than a later restart
-        spdlog::error("{}: no more checkpoints: {}", name(), e.what());
-        options_.checkpoint_file.clear();
+      if (auto state = saveState(); !state.is_null()) {
+        checkpoint_.step = ctx.step;
+        checkpoint_.state = std::move(state);
+        keepCheckpoint();
       }
     }
   }

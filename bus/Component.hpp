@@ -5,6 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "bus/Checkpoint.hpp"
 #include "bus/Node.hpp"
 
 namespace flatsat::bus {
@@ -65,11 +66,13 @@ class Component : public Node {
   msg::StepGrant nextGrant();
   /// --restarted: the state of the checkpoint, if there is a usable one.
   void restoreCheckpoint();
-  /// --restarted: drops the grants issued before this process joined. Each may have
-  /// been stepped by the process it replaces, whose samples of that step are on the
-  /// bus and in the recording already: stepping it again would publish a second,
-  /// different sample of the same step.
-  void skipGrantsOfEarlierProcess();
+  /// --restarted: drops the grants up to `claimed`. The process it replaces may
+  /// have published outputs of those, which are on the bus and in the recording
+  /// already: stepping one again would publish a second sample of the same step.
+  void skipGrantsThrough(std::uint64_t claimed);
+  /// Writes checkpoint_ to NodeOptions::checkpoint_file; on failure logs and stops keeping it.
+  void keepCheckpoint();
+  Checkpoint checkpoint_;  // what checkpoint_file holds
   std::optional<std::uint64_t> skip_through_;  // guarded by mutex_
   std::chrono::steady_clock::time_point next_health_;
   std::uint32_t divider_ = 1;  // this component's, from the schedule at start()

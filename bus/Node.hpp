@@ -53,12 +53,12 @@ struct NodeOptions {
   std::chrono::milliseconds step_timeout{60000};  ///< [ms] for one step's data
   std::uint64_t seed = 1;                         ///< [-] the scenario's: picks the samples bus faults hit
   std::vector<BusFault> bus_faults;               ///< from the scenario; more arrive as FaultCmd
-  /// Paced multi-process runs: where a component with state keeps it after each step
-  /// (bus/Checkpoint.hpp); empty: nowhere.
+  /// Paced multi-process runs: where a component keeps its state after each step and
+  /// the step it is about to publish (bus/Checkpoint.hpp); empty: nowhere.
   std::string checkpoint_file;
   /// A process started again mid-run (`flatsat run --restart`): it takes its state back
   /// from checkpoint_file before its first step, and steps no grant its previous
-  /// process may have stepped.
+  /// process claimed.
   bool restarted = false;
 };
 

@@ -2,7 +2,8 @@
 # SPDX-License-Identifier: Apache-2.0
 # One entry point for a fresh Debian 12 machine (as root) or a developer box:
 #   deploy/rig.sh run [SCENARIO] [flatsat run options]  install, build, run (default scenario)
-#   deploy/rig.sh test                                   install, build, run every test
+#   deploy/rig.sh test                                   install, build, run every test (each
+#                                                        fuzz target for 60 s among them)
 #   deploy/rig.sh fuzz [SECONDS]                         libFuzzer build (clang), each fuzz
 #                                                        target for SECONDS (default 600)
 #   deploy/rig.sh build | deps                           just those steps
@@ -26,8 +27,9 @@ packages=(
 # Only for `test`: the compose rig's engine, base image and network filter, and the
 # browser the live web view is tested in.
 test_packages=(docker.io docker-compose debootstrap nftables chromium)
-# Only for `fuzz`: clang with libFuzzer and the sanitizer runtimes.
+# Only for `fuzz` and `test`: clang with libFuzzer and the sanitizer runtimes.
 fuzz_packages=(clang libclang-rt-14-dev)
+fuzz_build="${FLATSAT_FUZZ_BUILD_DIR:-$here/build-fuzz}"
 
 deps() {
   local missing=()
@@ -61,6 +63,14 @@ build() {
   cmake --build "$build" -j"$jobs"
 }
 
+# The fuzzers, in their own folder: everything they compile is instrumented
+# (ASan, UBSan, coverage). -O1 and line tables only: it builds in minutes.
+build_fuzzers() {
+  CXX=clang++ cmake -S "$here" -B "$fuzz_build" -DCMAKE_BUILD_TYPE=None \
+    -DCMAKE_CXX_FLAGS="-O1 -gline-tables-only" -DFLATSAT_FUZZ=ON -DFLATSAT_FUZZ_SECONDS="$1" >/dev/null
+  cmake --build "$fuzz_build" -j"$jobs" --target fuzz_all
+}
+
 cmd="${1:-run}"
 [ $# -gt 0 ] && shift
 case "$cmd" in
@@ -73,28 +83,23 @@ case "$cmd" in
     exec "$build/bin/flatsat" run "$scenario" "$@"
     ;;
   fuzz)
-    # Fuzz builds go to their own folder: every library is instrumented.
     deps "${fuzz_packages[@]}"
-    fuzz_build="${FLATSAT_FUZZ_BUILD_DIR:-$here/build-fuzz}"
-    CXX=clang++ cmake -S "$here" -B "$fuzz_build" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-      -DFLATSAT_FUZZ=ON -DFLATSAT_FUZZ_SECONDS="${1:-600}" >/dev/null
-    cmake --build "$fuzz_build" -j"$jobs" --target fuzz_all
+    build_fuzzers "${1:-600}"
     cd "$fuzz_build"
     exec ctest --output-on-failure -R '^fuzz\.' --timeout 100000
     ;;
   test)
-    deps "${test_packages[@]}"; build
+    deps "${test_packages[@]}" "${fuzz_packages[@]}"; build
+    build_fuzzers 60
+    # The suite runs those fuzzers too, 60 s each (fuzz.<target>).
+    cmake -S "$here" -B "$build" -DFLATSAT_FUZZERS_DIR="$fuzz_build/bin" -DFLATSAT_FUZZ_SECONDS=60 >/dev/null
     start_docker
     cd "$build"
     # Every test holds a core of this resource spec, so $jobs run at once; the
-    # one slot more is for the soak, which holds none, once it is back in.
+    # one slot more is for the soak (10 min paced), which holds none.
     printf '{"version": {"major": 1, "minor": 0}, "local": [{"cores": [{"id": "0", "slots": %d}]}]}\n' \
       "$jobs" > ctest-resources.json
-    # The soak (ctest -L soak) is not part of it yet: under the suite's load a
-    # restarted component still steps, now and then, a grant its killed process
-    # did (a sample recorded twice; issue 12).
-    exec ctest --output-on-failure -j"$((jobs + 1))" --timeout 1500 --resource-spec-file ctest-resources.json \
-      -LE soak
+    exec ctest --output-on-failure -j"$((jobs + 1))" --timeout 1500 --resource-spec-file ctest-resources.json
     ;;
   *) echo "usage: $0 run [SCENARIO] [options] | test | fuzz [SECONDS] | build | deps" >&2; exit 2 ;;
 esac

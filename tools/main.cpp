@@ -261,9 +261,11 @@ int run(const RunOptions& o, nlohmann::ordered_json* summary_out = nullptr) {
     std::cerr << "error: " << e.what() << "\n";
     return kExitFailed;
   }
+  // Segments of processes killed mid-run and restarted (--restart) go now; those
+  // of processes killed just now stay for kShmGrace: the next start or
+  // `flatsat clean-shm` removes them.
+  if (!o.composed) tools::cleanStaleSharedMemory(tools::kShmGrace);
   if (!result.ok) {
-    // Segments of the processes just killed stay for kShmGrace: the next
-    // start or `flatsat clean-shm` removes them.
     std::cerr << "error: " << result.failure << "\n";
     return kExitFailed;
   }

@@ -50,7 +50,7 @@ void AttitudeControllerNode::step(const bus::StepContext& ctx) {
   }
   acks_.publish(ctx, name());
   const auto tach = tach_.at(ctx.step);
-  const auto& used = last_tach_.update(tach);
+  const auto used = last_tach_.update(tach);
   const auto estimate = estimate_.at(ctx.step);
   SunPointingControllerOutput out;
   if (onboard_) {

@@ -9,8 +9,8 @@ template <class Sample>
 class LastValid {
  public:
   /// The newest sample whose valid() is true, or `sample` itself before the
-  /// first valid one (the reference lives as long as `sample` or this).
-  const Sample& update(const Sample& sample) {
+  /// first valid one. A copy: callers pass the temporary Input::at() returns.
+  Sample update(const Sample& sample) {
     if (sample.valid()) last_ = sample;
     return last_ ? *last_ : sample;
   }

@@ -227,7 +227,7 @@ void EstimatorNode::step(const bus::StepContext& ctx) {
   // late) is no measurement: correcting with it again would count it twice.
   if (sun_ != nullptr) sun = sun_->dueAt(ctx.step);
   if (magnetometer_ != nullptr) magnetometer = magnetometer_->dueAt(ctx.step);
-  const auto& gyro = last_gyro_.update(gyro_.at(ctx.step));
+  const auto gyro = last_gyro_.update(gyro_.at(ctx.step));
   const Vectors v = toVectors(sun, magnetometer);
   const ReferenceVectors reference = reference_.step(ctx.sim_time_ns);
   if (s0_) {

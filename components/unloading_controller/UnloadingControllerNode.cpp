@@ -178,7 +178,7 @@ void UnloadingControllerNode::step(const bus::StepContext& ctx) {
   }
   acks_.publish(ctx, name());
   const auto reading = tach_.at(ctx.step);
-  const auto& tach = last_tach_.update(reading);
+  const auto tach = last_tach_.update(reading);
   MagneticModesInput in{bus::vec4(tach.wheel_speed_rad_s()), {}, false};
   if (onboard_) {
     const auto reference = onboard_->step(ctx.sim_time_ns);

@@ -23,12 +23,14 @@ TEST_CASE("a checkpoint reads back what was written, and refuses another compone
 
   const Eigen::Matrix3d m = (Eigen::Matrix3d() << 1, 2, 3, 4, 5, 6, 7, 8, 9.5e-17).finished();
   const Eigen::Quaterniond q(Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 3).normalized()));
-  bus::writeCheckpoint(file, "estimator", 41, {{"m", state_json::matrix(m)}, {"q", state_json::quaternion(q)}});
-  bus::writeCheckpoint(file, "estimator", 42, {{"m", state_json::matrix(m)}, {"q", state_json::quaternion(q)}});
+  const nlohmann::json state{{"m", state_json::matrix(m)}, {"q", state_json::quaternion(q)}};
+  bus::writeCheckpoint(file, "estimator", {41, state, 41});
+  bus::writeCheckpoint(file, "estimator", {41, state, 42});  // step 42 claimed, not yet done
   CHECK_FALSE(fs::exists(file + ".tmp"));
   const auto checkpoint = bus::readCheckpoint(file, "estimator");
   REQUIRE(checkpoint);
-  CHECK(checkpoint->step == 42);
+  CHECK(checkpoint->step == 41);
+  CHECK(checkpoint->claimed == 42);
   Eigen::Matrix3d back;
   state_json::read(checkpoint->state, "m", back);
   CHECK(back == m);  // bit for bit: JSON numbers round-trip doubles
@@ -40,6 +42,9 @@ TEST_CASE("a checkpoint reads back what was written, and refuses another compone
                     "q: not a unit quaternion");
   CHECK_THROWS_WITH(bus::readCheckpoint(file, "sequencer"),
                     file + ": the checkpoint of '\"estimator\"', not of 'sequencer'");
+  std::ofstream(file) << R"({"component": "estimator", "step": 4, "state": null, "claimed": 3})";
+  CHECK_THROWS_WITH(bus::readCheckpoint(file, "estimator"),
+                    file + ": not a checkpoint: claimed is before step");
   std::ofstream(file) << "{\"component\": \"estimator\", \"step\": 4";  // cut short by a crash of the disk
   CHECK_THROWS_WITH(bus::readCheckpoint(file, "estimator"), Catch::Matchers::StartsWith(file + ": not a checkpoint"));
   fs::remove_all(dir);
