@@ -47,6 +47,7 @@ void readPropagator(bus::ParamReader& orbit, OrbitTrackParams& track) {
   forces.read("j2", f.j2);
   forces.read("j3", f.j3);
   forces.read("j4", f.j4);
+  forces.read("j22", f.j22);
   forces.read("drag", f.drag);
   forces.read("solar_pressure", f.solar_pressure);
   forces.read("sun_gravity", f.sun_gravity);

@@ -9,6 +9,7 @@
 #include "sim/Format.hpp"
 #include "sim/MoonEphemeris.hpp"
 #include "sim/SunEphemeris.hpp"
+#include "sim/Time.hpp"
 
 namespace flatsat::sim {
 namespace {
@@ -83,6 +84,18 @@ Eigen::Vector3d zonalAcceleration_N(const Eigen::Vector3d& r_N_m, bool j2, bool 
   return scale * (radial / r * r_N_m - axial * Eigen::Vector3d::UnitZ());
 }
 
+Eigen::Vector3d sectoralJ22Acceleration_N(const Eigen::Vector3d& r_N_m, double earth_angle_rad) {
+  const double c = std::cos(earth_angle_rad), s = std::sin(earth_angle_rad);
+  const double x = c * r_N_m.x() + s * r_N_m.y(), y = -s * r_N_m.x() + c * r_N_m.y(), z = r_N_m.z();
+  const double r2 = r_N_m.squaredNorm(), r5 = r2 * r2 * std::sqrt(r2);
+  const double k = 3.0 * kMuEarth_m3_s2 * kEgm2008Radius_m * kEgm2008Radius_m;
+  const double u = kEgm2008C22 * (x * x - y * y) + 2.0 * kEgm2008S22 * x * y;  // U = k u / r⁵
+  const double radial = -5.0 * k * u / (r5 * r2);                              // ∂(r⁻⁵)/∂x_j = −5 x_j / r⁷
+  const Eigen::Vector3d a_E(k * 2.0 * (kEgm2008C22 * x + kEgm2008S22 * y) / r5 + radial * x,
+                            k * 2.0 * (-kEgm2008C22 * y + kEgm2008S22 * x) / r5 + radial * y, radial * z);
+  return {c * a_E.x() - s * a_E.y(), s * a_E.x() + c * a_E.y(), a_E.z()};
+}
+
 Eigen::Vector3d dragAcceleration_N(const Eigen::Vector3d& r_N_m, const Eigen::Vector3d& v_N_m_s, double density_kg_m3,
                                    double ballistic_m2_kg) {
   const Eigen::Vector3d v_rel = velocityThroughAir_N_m_s(r_N_m, v_N_m_s);
@@ -119,20 +132,22 @@ OrbitForces::OrbitForces(const OrbitForceParams& params)
       ballistic_m2_kg_(params.drag_coefficient * params.drag_area_m2 / params.mass_kg),
       cr_area_over_mass_m2_kg_(params.reflectivity_coefficient * params.srp_area_m2 / params.mass_kg) {}
 
-ThirdBodies OrbitForces::thirdBodiesAt(double jd_tt) const {
-  ThirdBodies bodies;
+Ephemerides OrbitForces::ephemeridesAt(double jd_tt) const {
+  Ephemerides bodies;
   // The Harris–Priester bulge follows the Sun too.
   const bool bulge = params_.drag && params_.atmosphere.model == DensityModel::kHarrisPriester;
   if (params_.sun_gravity || params_.solar_pressure || bulge) bodies.sun_N_m = sunPosition_N_m(jd_tt);
   if (params_.moon_gravity) bodies.moon_N_m = moonPosition_N_m(jd_tt);
+  if (params_.j22) bodies.earth_angle_rad = gmst_rad(jd_tt - params_.tt_minus_utc_s / kSecondsPerDay);
   return bodies;
 }
 
 Eigen::Vector3d OrbitForces::acceleration_N(const Eigen::Vector3d& r_N_m, const Eigen::Vector3d& v_N_m_s,
-                                            const ThirdBodies& bodies) const {
+                                            const Ephemerides& bodies) const {
   Eigen::Vector3d a = Eigen::Vector3d::Zero();
   if (params_.central_gravity) a += pointMassAcceleration_N(r_N_m, kMuEarth_m3_s2);
   if (params_.j2 || params_.j3 || params_.j4) a += zonalAcceleration_N(r_N_m, params_.j2, params_.j3, params_.j4);
+  if (params_.j22) a += sectoralJ22Acceleration_N(r_N_m, bodies.earth_angle_rad);
   if (params_.drag) {
     const double density = atmosphere_.density_kg_m3(r_N_m, bodies.sun_N_m.normalized());
     a += dragAcceleration_N(r_N_m, v_N_m_s, density, ballistic_m2_kg_);

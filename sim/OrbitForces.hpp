@@ -19,6 +19,11 @@ inline constexpr double kEgm2008Radius_m = 6378136.3;
 inline constexpr double kEgm2008J2 = 1.082626173852223e-3;
 inline constexpr double kEgm2008J3 = -2.532410518567722e-6;
 inline constexpr double kEgm2008J4 = -1.619897599916973e-6;
+/// [-] Unnormalised sectoral C22, S22 of EGM2008: C̄22 = 0.243914352398e-5,
+/// S̄22 = −0.140016683654e-5 times √(5/12) (Pavlis et al. 2012; the
+/// normalisation of Montenbruck & Gill Eq. 3.13).
+inline constexpr double kEgm2008C22 = 2.43914352398e-6 * 0.6454972243679028;
+inline constexpr double kEgm2008S22 = -1.40016683654e-6 * 0.6454972243679028;
 /// [m³/s²] Sun: IAU 2015 Resolution B3 nominal solar mass parameter (exact).
 inline constexpr double kMuSun_m3_s2 = 1.3271244e20;
 /// [m³/s²] Moon: the IAU 2009 Moon/Earth mass ratio 0.0123000371 (Luzum et al.,
@@ -35,6 +40,7 @@ struct OrbitForceParams {
   bool j2 = true;               // zonal harmonics of EGM2008, each switchable
   bool j3 = true;
   bool j4 = true;
+  bool j22 = false;            // sectoral C22/S22: the longitude drift of a geostationary orbit
   bool drag = true;            // co-rotating atmosphere, `atmosphere` density
   bool solar_pressure = true;  // cannonball, conical Earth shadow
   bool sun_gravity = true;     // third-body perturbations
@@ -51,10 +57,12 @@ struct OrbitForceParams {
   std::vector<std::string> validate() const;
 };
 
-/// [m] Geocentric Sun and Moon positions in N at one instant.
-struct ThirdBodies {
-  Eigen::Vector3d sun_N_m = Eigen::Vector3d::Zero();
-  Eigen::Vector3d moon_N_m = Eigen::Vector3d::Zero();
+/// What the forces need of the time at one instant: the geocentric Sun and
+/// Moon in N, and the Earth's rotation angle for the tesseral terms.
+struct Ephemerides {
+  Eigen::Vector3d sun_N_m = Eigen::Vector3d::Zero();   // [m]
+  Eigen::Vector3d moon_N_m = Eigen::Vector3d::Zero();  // [m]
+  double earth_angle_rad = 0.0;                        // [rad] Greenwich sidereal angle (GMST)
 };
 
 /// [m/s²] Point-mass attraction −μ r/|r|³.
@@ -66,6 +74,12 @@ Eigen::Vector3d pointMassAcceleration_N(const Eigen::Vector3d& r_N_m, double mu_
 /// the potential −(μ/r) J_n (R/r)ⁿ P_n(s), s = z/r = sin(geocentric latitude):
 /// a_n = μ J_n Rⁿ / r^(n+2) · [P'_(n+1)(s) r̂ − P'_n(s) ẑ].
 Eigen::Vector3d zonalAcceleration_N(const Eigen::Vector3d& r_N_m, bool j2, bool j3, bool j4);
+
+/// [m/s²] The sectoral degree-2 term in N, the Earth turned by
+/// `earth_angle_rad` (GMST): the gradient of the potential
+/// 3 μ R² [C22 (x² − y²) + 2 S22 x y] / r⁵ in Earth-fixed x, y, z
+/// (P22(sin φ) = 3 cos² φ, Montenbruck & Gill Eq. 3.8).
+Eigen::Vector3d sectoralJ22Acceleration_N(const Eigen::Vector3d& r_N_m, double earth_angle_rad);
 
 /// [m/s²] Drag −½ ρ (C_D A/m) |v_rel| v_rel with v_rel = v − ω⊕ × r, the velocity
 /// relative to an atmosphere rotating with the Earth (M&G §3.5.1).
@@ -90,12 +104,12 @@ class OrbitForces {
   explicit OrbitForces(const OrbitForceParams& params);
 
   /// Sun and Moon at jd_tt [d] (Vallado Alg. 29 and 31), each only if a switched-on
-  /// force uses it; the other stays zero.
-  ThirdBodies thirdBodiesAt(double jd_tt) const;
+  /// force uses it; the other stays zero. The Earth's angle with UT1 = UTC.
+  Ephemerides ephemeridesAt(double jd_tt) const;
 
   /// [m/s²] Acceleration in N at r [m], v [m/s] with the given Sun and Moon.
   Eigen::Vector3d acceleration_N(const Eigen::Vector3d& r_N_m, const Eigen::Vector3d& v_N_m_s,
-                                 const ThirdBodies& bodies) const;
+                                 const Ephemerides& bodies) const;
 
   const OrbitForceParams& params() const { return params_; }
 

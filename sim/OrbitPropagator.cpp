@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -92,24 +93,24 @@ OrbitPropagator::OrbitPropagator(const OrbitForceParams& params, const UtcEpoch&
     : forces_(checked(params, epoch, initial)),
       jd_tt_epoch_(julianDate(epoch) + params.tt_minus_utc_s / kSecondsPerDay),
       state_(initial),
-      bodies_(forces_.thirdBodiesAt(jd_tt_epoch_)) {}
+      bodies_(forces_.ephemeridesAt(jd_tt_epoch_)) {}
 
 double OrbitPropagator::jdTt(double t_s) const { return jd_tt_epoch_ + t_s / kSecondsPerDay; }
 
 Eigen::Vector3d OrbitPropagator::acceleration_N(double t_s, const State& state) const {
-  return forces_.acceleration_N(state.r_N_m, state.v_N_m_s, forces_.thirdBodiesAt(jdTt(t_s)));
+  return forces_.acceleration_N(state.r_N_m, state.v_N_m_s, forces_.ephemeridesAt(jdTt(t_s)));
 }
 
 void OrbitPropagator::restart(double t_s, const State& state) {
   t_s_ = t_s;
   state_ = state;
-  bodies_ = forces_.thirdBodiesAt(jdTt(t_s));
+  bodies_ = forces_.ephemeridesAt(jdTt(t_s));
 }
 
 void OrbitPropagator::step(double dt_s) {
   if (dt_s == 0.0 || !std::isfinite(dt_s)) return;
-  const ThirdBodies start = bodies_;
-  const ThirdBodies end = forces_.thirdBodiesAt(jdTt(t_s_ + dt_s));
+  const Ephemerides start = bodies_;
+  const Ephemerides end = forces_.ephemeridesAt(jdTt(t_s_ + dt_s));
 
   // y' = (v, a(t, r, v)); stage i sees y + dt Σ_j a_ij k_j.
   std::array<Eigen::Vector3d, kStages> k_r;  // dr/dt = v at each stage
@@ -122,9 +123,11 @@ void OrbitPropagator::step(double dt_s) {
       r += (dt_s * kA[i][j]) * k_r[j];
       v += (dt_s * kA[i][j]) * k_v[j];
     }
-    ThirdBodies bodies;
+    Ephemerides bodies;
     bodies.sun_N_m = start.sun_N_m + kC[i] * (end.sun_N_m - start.sun_N_m);
     bodies.moon_N_m = start.moon_N_m + kC[i] * (end.moon_N_m - start.moon_N_m);
+    bodies.earth_angle_rad = start.earth_angle_rad + kC[i] * std::remainder(end.earth_angle_rad - start.earth_angle_rad,
+                                                                            2.0 * std::numbers::pi);
     k_r[i] = v;
     k_v[i] = forces_.acceleration_N(r, v, bodies);
   }

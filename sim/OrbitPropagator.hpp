@@ -49,7 +49,7 @@ class OrbitPropagator {
   double jd_tt_epoch_;  // [d] Julian date (TT) of t = 0
   double t_s_ = 0.0;
   State state_;
-  ThirdBodies bodies_;  // at t_s_
+  Ephemerides bodies_;  // at t_s_
 };
 
 }  // namespace flatsat::sim

@@ -1,8 +1,10 @@
 // SPDX-License-Identifier: Apache-2.0
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <catch2/catch.hpp>
 
@@ -90,6 +92,54 @@ TEST_CASE("zonal accelerations are the gradients of the zonal potential", "[sim]
       CHECK(zonal(r, 3).z() == Approx(1.5 * kMu * kEgm2008J3 * std::pow(kR, 3) / std::pow(7000e3, 5)));
     }
   }
+}
+
+TEST_CASE("the sectoral J22 term: the gradient of its potential, and the drift it gives a geostationary orbit",
+          "[sim][orbit]") {
+  // V22 = (μ/r)(R/r)² P22(sin φ)(C22 cos 2λ + S22 sin 2λ), P22 = 3 cos² φ, in
+  // latitude and longitude of the Earth turned by θ.
+  const double theta = 0.7;
+  const auto potential = [&](const Eigen::Vector3d& r_N) {
+    const double lon = std::atan2(r_N.y(), r_N.x()) - theta, d = r_N.norm();
+    const double cos_lat = std::hypot(r_N.x(), r_N.y()) / d;
+    return kMu / d * std::pow(kR / d, 2) * 3.0 * cos_lat * cos_lat *
+           (kEgm2008C22 * std::cos(2 * lon) + kEgm2008S22 * std::sin(2 * lon));
+  };
+  for (const Eigen::Vector3d& r : {Eigen::Vector3d(7000e3, 0.0, 0.0), Eigen::Vector3d(4000e3, -3000e3, 4500e3),
+                                   Eigen::Vector3d(-30000e3, 25000e3, -2000e3)}) {
+    Eigen::Vector3d gradient;
+    for (int k = 0; k < 3; ++k) {
+      Eigen::Vector3d dr = Eigen::Vector3d::Zero();
+      dr(k) = 1.0;
+      gradient(k) = (potential(r + dr) - potential(r - dr)) / 2.0;
+    }
+    CHECK((sectoralJ22Acceleration_N(r, theta) - gradient).norm() < 1e-6 * gradient.norm());
+  }
+  // On the geostationary ring the along-track part drives the longitude:
+  // λ̈ = −3 a_T / r. Published: stable points near 75°E and 105°W, unstable
+  // near 15°W and 165°E, and |λ̈| up to about 0.0017°/day² (Soop, Handbook of
+  // Geostationary Orbits, 1994, ch. 3).
+  const double r_geo = 42164.17e3;
+  const double deg_per_day2 = 86400.0 * 86400.0 * 180.0 / std::numbers::pi;
+  double largest = 0.0;
+  std::vector<double> stable, unstable;
+  double previous = 0.0;
+  for (int tenth = 0; tenth <= 3600; ++tenth) {
+    const double lon = tenth * 0.1 * std::numbers::pi / 180.0, ra = lon + theta;
+    const Eigen::Vector3d r(r_geo * std::cos(ra), r_geo * std::sin(ra), 0.0), east(-std::sin(ra), std::cos(ra), 0.0);
+    const double lon_accel = -3.0 * sectoralJ22Acceleration_N(r, theta).dot(east) / r_geo * deg_per_day2;
+    largest = std::max(largest, std::abs(lon_accel));
+    if (tenth > 0 && previous > 0.0 && lon_accel <= 0.0) stable.push_back(tenth * 0.1);  // pushed back from both sides
+    if (tenth > 0 && previous < 0.0 && lon_accel >= 0.0) unstable.push_back(tenth * 0.1);
+    previous = lon_accel;
+  }
+  CHECK_THAT(largest, Catch::Matchers::WithinRel(0.0017, 0.03));
+  REQUIRE(stable.size() == 2);
+  REQUIRE(unstable.size() == 2);
+  CHECK_THAT(stable[0], Catch::Matchers::WithinAbs(75.0, 0.5));
+  CHECK_THAT(stable[1], Catch::Matchers::WithinAbs(255.0, 0.5));  // 105°W
+  CHECK_THAT(unstable[0], Catch::Matchers::WithinAbs(165.0, 0.5));
+  CHECK_THAT(unstable[1], Catch::Matchers::WithinAbs(345.0, 0.5));  // 15°W
 }
 
 TEST_CASE("drag opposes the velocity relative to the rotating atmosphere", "[sim][orbit]") {
@@ -194,10 +244,10 @@ TEST_CASE("OrbitForces sums the switched-on terms", "[sim][orbit]") {
   const Eigen::Vector3d r(4000e3, -3000e3, 4500e3);
   const Eigen::Vector3d v(-3000.0, 4000.0, 3000.0);
   const double jd = 2461041.5;
-  ThirdBodies bodies{sunPosition_N_m(jd), moonPosition_N_m(jd)};
+  Ephemerides bodies{sunPosition_N_m(jd), moonPosition_N_m(jd)};
   const OrbitForceParams params;
   const OrbitForces forces(params);
-  const ThirdBodies computed = forces.thirdBodiesAt(jd);
+  const Ephemerides computed = forces.ephemeridesAt(jd);
   CHECK((computed.sun_N_m - bodies.sun_N_m).norm() == 0.0);
   CHECK((computed.moon_N_m - bodies.moon_N_m).norm() == 0.0);
 
@@ -214,8 +264,8 @@ TEST_CASE("OrbitForces sums the switched-on terms", "[sim][orbit]") {
   only_j2.central_gravity = only_j2.j3 = only_j2.j4 = false;
   only_j2.drag = only_j2.solar_pressure = only_j2.sun_gravity = only_j2.moon_gravity = false;
   const OrbitForces j2(only_j2);
-  CHECK(j2.thirdBodiesAt(jd).sun_N_m.norm() == 0.0);
-  CHECK(j2.thirdBodiesAt(jd).moon_N_m.norm() == 0.0);
+  CHECK(j2.ephemeridesAt(jd).sun_N_m.norm() == 0.0);
+  CHECK(j2.ephemeridesAt(jd).moon_N_m.norm() == 0.0);
   CHECK((j2.acceleration_N(r, v, bodies) - zonal(r, 2)).norm() == 0.0);
 }
 

@@ -133,7 +133,7 @@ TEST_CASE("OrbitPropagator with every force stays a sensible low orbit", "[sim][
     THEN("it is OrbitForces' with the ephemerides of TT = UTC + 69.184 s") {
       const OrbitForces forces(all);
       const double jd_tt = julianDate(epoch) + 69.184 / 86400.0;
-      const Eigen::Vector3d expected = forces.acceleration_N(s0.r_N_m, s0.v_N_m_s, forces.thirdBodiesAt(jd_tt));
+      const Eigen::Vector3d expected = forces.acceleration_N(s0.r_N_m, s0.v_N_m_s, forces.ephemeridesAt(jd_tt));
       CHECK((propagator.acceleration_N(0.0, s0) - expected).norm() < 1e-15 * expected.norm());
     }
   }
