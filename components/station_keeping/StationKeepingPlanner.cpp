@@ -1,0 +1,149 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "components/station_keeping/StationKeepingPlanner.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include "sim/Constants.hpp"
+
+namespace flatsat::station_keeping {
+
+namespace {
+
+using Effect5 = Eigen::Matrix<double, 5, 1>;
+constexpr double kPi = std::numbers::pi;
+
+const double kSyncRadius_m = std::cbrt(sim::kMuEarth_m3_s2 / std::pow(sim::kEarthRotationRate_rad_s, 2));
+
+double wrap2Pi(double a) {
+  const double w = std::fmod(a, 2.0 * kPi);
+  return w < 0.0 ? w + 2.0 * kPi : w;
+}
+
+/// The change of (i, e, drift) as one vector in m/s: i and e times v, the
+/// drift as the tangential ΔV that makes it (−v Δdrift / 3n), so that every
+/// row weighs a metre per second alike in the least squares.
+Effect5 scaled(const Eigen::Vector2d& di, const Eigen::Vector2d& de, double ddrift, double v, double n) {
+  Effect5 out;
+  out << v * di, v * de, -v * ddrift / (3.0 * n);
+  return out;
+}
+
+bool facesInclination(const Firing& f) {
+  const bool at_node = std::abs(std::remainder(f.ra_rad - 0.5 * kPi, kPi)) < 1e-9;  // 90° or 270°
+  return at_node && f.job != Job::kDriftAndEccentricity;
+}
+
+/// Non-negative least squares min |B x − y|, x ≥ 0, exactly: the best of the
+/// unconstrained solutions over every subset of columns whose solution is
+/// non-negative (at most 2⁶ subsets here).
+Eigen::VectorXd nonNegativeLeastSquares(const Eigen::Matrix<double, 5, Eigen::Dynamic>& B, const Effect5& y) {
+  const int m = static_cast<int>(B.cols());
+  Eigen::VectorXd best = Eigen::VectorXd::Zero(m);
+  double best_residual = y.squaredNorm();
+  for (unsigned subset = 1; subset < (1u << m); ++subset) {
+    std::vector<int> columns;
+    for (int j = 0; j < m; ++j) {
+      if (subset & (1u << j)) columns.push_back(j);
+    }
+    Eigen::Matrix<double, 5, Eigen::Dynamic> Bs(5, columns.size());
+    for (std::size_t k = 0; k < columns.size(); ++k) Bs.col(static_cast<Eigen::Index>(k)) = B.col(columns[k]);
+    const auto qr = Bs.colPivHouseholderQr();
+    if (qr.rank() < static_cast<Eigen::Index>(columns.size())) continue;
+    const Eigen::VectorXd xs = qr.solve(y);
+    if ((xs.array() < 0.0).any()) continue;
+    const double residual = (Bs * xs - y).squaredNorm();
+    if (residual < best_residual - 1e-18) {
+      best_residual = residual;
+      best.setZero();
+      for (std::size_t k = 0; k < columns.size(); ++k) best(columns[k]) = xs(static_cast<Eigen::Index>(k));
+    }
+  }
+  return best;
+}
+
+}  // namespace
+
+std::vector<std::string> validate(const StationKeepingParams& p) {
+  std::vector<std::string> problems;
+  const auto check = [&](bool ok, const std::string& what) {
+    if (!ok) problems.push_back(what);
+  };
+  check(std::abs(p.station_longitude_rad) <= kPi, "station_longitude_rad: outside [-pi, pi]");
+  check(p.longitude_return_s >= 86400.0 && p.longitude_return_s <= 60 * 86400.0,
+        "longitude_return_s: outside [86400, 5184000] s");
+  for (const auto& problem : validate(p.thrusters)) problems.push_back("thrusters." + problem);
+  check(p.thrust_N > 0.0 && p.thrust_N <= 2.0, "thrust_N: outside (0, 2] N");
+  check(p.mass_kg > 0.0 && p.mass_kg <= 1e5, "mass_kg: outside (0, 1e5] kg");
+  check(p.max_burn_s >= 60.0 && p.max_burn_s <= 43200.0, "max_burn_s: outside [60, 43200] s");
+  check(p.max_ra_shift_rad >= 0.0 && p.max_ra_shift_rad <= 0.25 * kPi, "max_ra_shift_rad: outside [0, pi/4] rad");
+  return problems;
+}
+
+StationKeepingPlanner::StationKeepingPlanner(const StationKeepingParams& params) : params_(params) {
+  const auto problems = validate(params);
+  if (!problems.empty()) {
+    std::string text = "station keeping parameters:";
+    for (const auto& problem : problems) text += " " + problem + ";";
+    throw std::invalid_argument(text);
+  }
+}
+
+StationKeepingPlan StationKeepingPlanner::step(const StationKeepingInputs& in) const {
+  const double v = std::sqrt(sim::kMuEarth_m3_s2 / kSyncRadius_m), n = sim::kEarthRotationRate_rad_s;
+  StationKeepingPlan plan;
+  plan.season = seasonOf(in.sun_N_unit.normalized(), kSyncRadius_m);
+  std::vector<Firing> firings = firingsFor(in.failure, plan.season, std::atan2(in.sun_N_unit.y(), in.sun_N_unit.x()));
+
+  // The north row pushes south: at RA s it turns i along (−sin s, cos s).
+  // Face the correction −i, within max_ra_shift_rad of 90°.
+  const Eigen::Vector2d di = -in.mean.i;
+  const double shift = di.norm() > 0.0 ? std::clamp(std::remainder(std::atan2(-di.x(), di.y()) - 0.5 * kPi, 2.0 * kPi),
+                                                    -params_.max_ra_shift_rad, params_.max_ra_shift_rad)
+                                        : 0.0;
+  for (auto& f : firings) {
+    if (facesInclination(f)) f.ra_rad = wrap2Pi(f.ra_rad + shift);
+  }
+
+  const double lon_error = std::remainder(in.mean.longitude_rad - params_.station_longitude_rad, 2.0 * kPi);
+  plan.drift_target_rad_s = -lon_error / params_.longitude_return_s;
+  Effect5 wanted = scaled(di, -in.mean.e, plan.drift_target_rad_s - in.mean.drift_rad_s, v, n);
+
+  const auto effectOf = [&](const Firing& f, double dv) {
+    const ImpulseEffect e = impulseEffect(dv * forceDirection_orbital(f.thruster, params_.thrusters), f.ra_rad, v, n);
+    return std::pair{e, scaled(e.i, e.e, e.drift_rad_s, v, n)};
+  };
+  std::vector<int> free;  // the firings the least squares sizes; the dump firings are given
+  for (int j = 0; j < static_cast<int>(firings.size()); ++j) {
+    if (firings[j].job == Job::kMomentumDump) {
+      wanted -= effectOf(firings[j], in.dump_dv_m_s).second;
+    } else {
+      free.push_back(j);
+    }
+  }
+  Eigen::Matrix<double, 5, Eigen::Dynamic> B(5, free.size());
+  for (std::size_t k = 0; k < free.size(); ++k) B.col(static_cast<Eigen::Index>(k)) = effectOf(firings[free[k]], 1.0).second;
+  const Eigen::VectorXd x = nonNegativeLeastSquares(B, wanted);
+
+  const double max_dv = params_.max_burn_s * params_.thrust_N / params_.mass_kg;
+  plan.i_after = in.mean.i;
+  plan.e_after = in.mean.e;
+  plan.drift_after_rad_s = in.mean.drift_rad_s;
+  for (int j = 0; j < static_cast<int>(firings.size()); ++j) {
+    const auto at = std::find(free.begin(), free.end(), j);
+    const double dv = std::min(max_dv, at == free.end() ? in.dump_dv_m_s : x(at - free.begin()));
+    if (dv <= 0.0) continue;
+    const ImpulseEffect e = effectOf(firings[j], dv).first;
+    plan.i_after += e.i;
+    plan.e_after += e.e;
+    plan.drift_after_rad_s += e.drift_rad_s;
+    plan.dv_total_m_s += dv;
+    plan.firings.push_back({firings[j].thruster, firings[j].ra_rad, dv, dv * params_.mass_kg / params_.thrust_N,
+                            firings[j].job});
+  }
+  return plan;
+}
+
+}  // namespace flatsat::station_keeping

@@ -1,0 +1,78 @@
+// SPDX-License-Identifier: Apache-2.0
+#pragma once
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "components/station_keeping/FiringTable.hpp"
+#include "components/station_keeping/GeoElements.hpp"
+#include "components/station_keeping/GeoThrusters.hpp"
+
+namespace flatsat::station_keeping {
+
+struct StationKeepingParams {
+  double station_longitude_rad = 0.0;  ///< [rad] east of Greenwich, [−π, π]
+  double longitude_return_s = 432000.0;  ///< [s] the time constant of the drift that brings the longitude back, [1 d, 60 d]
+  GeoThrusterParams thrusters;
+  double thrust_N = 0.165;      ///< [N] per thruster, (0, 2]
+  double mass_kg = 2000.0;      ///< [kg] (0, 1e5]
+  double max_burn_s = 14400.0;  ///< [s] per firing, [60, 43200]: an arc of at most ±30° of orbit at 4 h
+  double max_ra_shift_rad = 0.52;  ///< [rad] how far the i firings may move from 90°/270°, [0, π/4]
+};
+
+/// Every problem with `params`, naming the field and its range; empty: valid.
+std::vector<std::string> validate(const StationKeepingParams& params);
+
+/// One firing of the plan for the next orbit.
+struct PlannedFiring {
+  GeoThruster thruster = GeoThruster::kNW;
+  double ra_rad = 0.0;      ///< [rad] right ascension of the firing's centre, [0, 2π)
+  double dv_m_s = 0.0;      ///< [m/s] along the thruster's force direction, ≥ 0
+  double duration_s = 0.0;  ///< [s] dv · mass / thrust
+  Job job = Job::kInclinationDriftEccentricity;
+};
+
+struct StationKeepingInputs {
+  SynchronousElements mean;      ///< averaged over the last orbit
+  PairFailure failure = PairFailure::kNone;
+  Eigen::Vector3d sun_N_unit{1.0, 0.0, 0.0};  ///< the Sun's direction, inertial
+  /// [m/s] per firing of the momentum-dump pair (22/28 in the nominal table;
+  /// each of the pair gets it so that their radial parts cancel), ≥ 0.
+  double dump_dv_m_s = 0.0;
+};
+
+struct StationKeepingPlan {
+  std::vector<PlannedFiring> firings;
+  /// The synchronous elements the plan leaves by first-order effects: what the
+  /// table's thrusters could not correct shows here.
+  Eigen::Vector2d i_after{0.0, 0.0};
+  Eigen::Vector2d e_after{0.0, 0.0};
+  double drift_after_rad_s = 0.0;
+  double drift_target_rad_s = 0.0;  ///< [rad/s] what brings the longitude back to the station
+  double dv_total_m_s = 0.0;
+  Season season;
+};
+
+/// Once an orbit: the firings of the seed's Table I for the state and season
+/// (FiringTable.hpp), each sized so that together they bring the inclination
+/// and eccentricity vectors to zero and the drift to the one that returns the
+/// longitude to the station in `longitude_return_s`, as far as the available
+/// thrusters can. The effects are linear (GeoElements.hpp impulseEffect); the
+/// sizes are the non-negative least squares solution (Lawson & Hanson, Solving
+/// Least Squares Problems, 1974, ch. 23), exact over all subsets of the at
+/// most six firings. The i firings move off 90°/270° (at most
+/// max_ra_shift_rad) to face the inclination vector, "approximately 90° RA"
+/// in the seed's words. It keeps no state: each orbit's plan follows from
+/// that orbit's mean elements alone.
+class StationKeepingPlanner {
+ public:
+  /// @throws std::invalid_argument listing every problem of validate(params).
+  explicit StationKeepingPlanner(const StationKeepingParams& params);
+  StationKeepingPlan step(const StationKeepingInputs& inputs) const;
+
+ private:
+  StationKeepingParams params_;
+};
+
+}  // namespace flatsat::station_keeping
