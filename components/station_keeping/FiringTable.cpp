@@ -47,13 +47,13 @@ std::vector<Firing> outerPairFailed(T north, T south, bool north_at_90_in_spring
 
 }  // namespace
 
-Season seasonOf(const Eigen::Vector3d& sun_N_unit, double orbit_radius_m) {
+Season seasonOf(const Eigen::Vector3d& sun_N_unit, double orbit_radius_m, double margin_rad) {
   Season season;
   season.winter_spring = sun_N_unit.x() > 0.0;
   const double declination = std::asin(std::clamp(sun_N_unit.z(), -1.0, 1.0));
   // The penumbra reaches the Sun's angular radius further than the umbra.
   const double reach = std::asin(sim::kEarthEquatorialRadius_m / orbit_radius_m) +
-                       std::asin(sim::kSunRadius_m / sim::kAstronomicalUnit_m);
+                       std::asin(sim::kSunRadius_m / sim::kAstronomicalUnit_m) + margin_rad;
   if (std::abs(declination) < reach) {
     season.eclipse = season.winter_spring ? Season::Eclipse::kSpring : Season::Eclipse::kAutumn;
   }

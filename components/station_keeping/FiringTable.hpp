@@ -25,8 +25,10 @@ struct Season {
 };
 
 /// The season for the Sun's direction `sun_N_unit` (inertial, equator and
-/// equinox) seen from an equatorial orbit of radius `orbit_radius_m`.
-Season seasonOf(const Eigen::Vector3d& sun_N_unit, double orbit_radius_m);
+/// equinox) seen from an equatorial orbit of radius `orbit_radius_m`; the
+/// eclipse seasons widened by `margin_rad` of solar declination (a plan made
+/// now fires up to an orbit later, when the Sun has moved up to 0.4°).
+Season seasonOf(const Eigen::Vector3d& sun_N_unit, double orbit_radius_m, double margin_rad = 0.0);
 
 /// One firing per orbit: `thruster` at right ascension `ra_rad` (from the
 /// vernal equinox, [0, 2π)) for `job`.

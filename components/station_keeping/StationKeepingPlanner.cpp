@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
 
@@ -22,12 +23,13 @@ double wrap2Pi(double a) {
   return w < 0.0 ? w + 2.0 * kPi : w;
 }
 
-/// The change of (i, e, drift) as one vector in m/s: i and e times v, the
-/// drift as the tangential ΔV that makes it (−v Δdrift / 3n), so that every
-/// row weighs a metre per second alike in the least squares.
-Effect5 scaled(const Eigen::Vector2d& di, const Eigen::Vector2d& de, double ddrift, double v, double n) {
+constexpr double kShiftStep_rad = 2.5 * kPi / 180.0;
+
+/// The change of (i, e, drift) as one vector in shares of the station box:
+/// a drift by the longitude it makes over drift_horizon_s.
+Effect5 scaled(const Eigen::Vector2d& di, const Eigen::Vector2d& de, double ddrift, const StationKeepingParams& p) {
   Effect5 out;
-  out << v * di, v * de, -v * ddrift / (3.0 * n);
+  out << di / p.box_inclination_rad, de / p.box_eccentricity, ddrift * p.drift_horizon_s / p.box_longitude_rad;
   return out;
 }
 
@@ -79,6 +81,12 @@ std::vector<std::string> validate(const StationKeepingParams& p) {
   check(p.mass_kg > 0.0 && p.mass_kg <= 1e5, "mass_kg: outside (0, 1e5] kg");
   check(p.max_burn_s >= 60.0 && p.max_burn_s <= 43200.0, "max_burn_s: outside [60, 43200] s");
   check(p.max_ra_shift_rad >= 0.0 && p.max_ra_shift_rad <= 0.25 * kPi, "max_ra_shift_rad: outside [0, pi/4] rad");
+  check(p.box_longitude_rad > 0.0 && p.box_longitude_rad <= 0.0175, "box_longitude_rad: outside (0, 0.0175] rad");
+  check(p.box_inclination_rad > 0.0 && p.box_inclination_rad <= 0.0175,
+        "box_inclination_rad: outside (0, 0.0175] rad");
+  check(p.box_eccentricity > 0.0 && p.box_eccentricity <= 0.01, "box_eccentricity: outside (0, 0.01]");
+  check(p.drift_horizon_s >= 86400.0 && p.drift_horizon_s <= 60 * 86400.0,
+        "drift_horizon_s: outside [86400, 5184000] s");
   return problems;
 }
 
@@ -94,38 +102,50 @@ StationKeepingPlanner::StationKeepingPlanner(const StationKeepingParams& params)
 StationKeepingPlan StationKeepingPlanner::step(const StationKeepingInputs& in) const {
   const double v = std::sqrt(sim::kMuEarth_m3_s2 / kSyncRadius_m), n = sim::kEarthRotationRate_rad_s;
   StationKeepingPlan plan;
-  plan.season = seasonOf(in.sun_N_unit.normalized(), kSyncRadius_m);
+  // A day of the Sun's declination at the equinox (0.4°) and some more.
+  plan.season = seasonOf(in.sun_N_unit.normalized(), kSyncRadius_m, 0.5 * kPi / 180.0);
   std::vector<Firing> firings = firingsFor(in.failure, plan.season, std::atan2(in.sun_N_unit.y(), in.sun_N_unit.x()));
-
-  // The north row pushes south: at RA s it turns i along (−sin s, cos s).
-  // Face the correction −i, within max_ra_shift_rad of 90°.
-  const Eigen::Vector2d di = -in.mean.i;
-  const double shift = di.norm() > 0.0 ? std::clamp(std::remainder(std::atan2(-di.x(), di.y()) - 0.5 * kPi, 2.0 * kPi),
-                                                    -params_.max_ra_shift_rad, params_.max_ra_shift_rad)
-                                        : 0.0;
-  for (auto& f : firings) {
-    if (facesInclination(f)) f.ra_rad = wrap2Pi(f.ra_rad + shift);
-  }
 
   const double lon_error = std::remainder(in.mean.longitude_rad - params_.station_longitude_rad, 2.0 * kPi);
   plan.drift_target_rad_s = -lon_error / params_.longitude_return_s;
-  Effect5 wanted = scaled(di, -in.mean.e, plan.drift_target_rad_s - in.mean.drift_rad_s, v, n);
+  const Effect5 wanted = scaled(-in.mean.i, -in.mean.e, plan.drift_target_rad_s - in.mean.drift_rad_s, params_);
 
   const auto effectOf = [&](const Firing& f, double dv) {
     const ImpulseEffect e = impulseEffect(dv * forceDirection_orbital(f.thruster, params_.thrusters), f.ra_rad, v, n);
-    return std::pair{e, scaled(e.i, e.e, e.drift_rad_s, v, n)};
+    return std::pair{e, scaled(e.i, e.e, e.drift_rad_s, params_)};
   };
   std::vector<int> free;  // the firings the least squares sizes; the dump firings are given
   for (int j = 0; j < static_cast<int>(firings.size()); ++j) {
-    if (firings[j].job == Job::kMomentumDump) {
-      wanted -= effectOf(firings[j], in.dump_dv_m_s).second;
-    } else {
-      free.push_back(j);
+    if (firings[j].job != Job::kMomentumDump) free.push_back(j);
+  }
+  // The i firings move off 90°/270° by the shift that leaves the least
+  // weighted error: the heading of −i alone is not it when the d/e firings
+  // turn i too (the outer-pair failures). Candidates every 2.5°.
+  const std::vector<Firing> at_nodes = firings;
+  double best_residual = std::numeric_limits<double>::infinity();
+  Eigen::VectorXd x;
+  const int candidates = static_cast<int>(std::floor(params_.max_ra_shift_rad / kShiftStep_rad));
+  for (int c = -candidates; c <= candidates; ++c) {
+    std::vector<Firing> shifted = at_nodes;
+    for (auto& f : shifted) {
+      if (facesInclination(f)) f.ra_rad = wrap2Pi(f.ra_rad + c * kShiftStep_rad);
+    }
+    Effect5 rest = wanted;
+    for (const auto& f : shifted) {
+      if (f.job == Job::kMomentumDump) rest -= effectOf(f, in.dump_dv_m_s).second;
+    }
+    Eigen::Matrix<double, 5, Eigen::Dynamic> B(5, free.size());
+    for (std::size_t k = 0; k < free.size(); ++k) {
+      B.col(static_cast<Eigen::Index>(k)) = effectOf(shifted[free[k]], 1.0).second;
+    }
+    const Eigen::VectorXd sizes = nonNegativeLeastSquares(B, rest);
+    const double residual = (B * sizes - rest).squaredNorm();
+    if (residual < best_residual - 1e-12) {  // ties keep the shift nearer the node
+      best_residual = residual;
+      x = sizes;
+      firings = shifted;
     }
   }
-  Eigen::Matrix<double, 5, Eigen::Dynamic> B(5, free.size());
-  for (std::size_t k = 0; k < free.size(); ++k) B.col(static_cast<Eigen::Index>(k)) = effectOf(firings[free[k]], 1.0).second;
-  const Eigen::VectorXd x = nonNegativeLeastSquares(B, wanted);
 
   const double max_dv = params_.max_burn_s * params_.thrust_N / params_.mass_kg;
   plan.i_after = in.mean.i;

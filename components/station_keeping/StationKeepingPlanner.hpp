@@ -19,6 +19,14 @@ struct StationKeepingParams {
   double mass_kg = 2000.0;      ///< [kg] (0, 1e5]
   double max_burn_s = 14400.0;  ///< [s] per firing, [60, 43200]: an arc of at most ±30° of orbit at 4 h
   double max_ra_shift_rad = 0.52;  ///< [rad] how far the i firings may move from 90°/270°, [0, π/4]
+  // The station box, by which the plan weighs what it cannot correct at once.
+  double box_longitude_rad = 8.7266e-4;    ///< [rad] ± half-width (0.05°), (0, 0.0175]
+  double box_inclination_rad = 8.7266e-4;  ///< [rad] (0.05°), (0, 0.0175]
+  double box_eccentricity = 2e-4;          ///< [-] (0, 0.01]
+  /// [s] a drift error weighs as the longitude it makes in this time, [1 d, 60 d]:
+  /// longer holds the longitude tighter at the cost of i and e (in the
+  /// outer-pair failures, where one firing carries drift, e and some i).
+  double drift_horizon_s = 172328.0;
 };
 
 /// Every problem with `params`, naming the field and its range; empty: valid.
@@ -58,12 +66,15 @@ struct StationKeepingPlan {
 /// (FiringTable.hpp), each sized so that together they bring the inclination
 /// and eccentricity vectors to zero and the drift to the one that returns the
 /// longitude to the station in `longitude_return_s`, as far as the available
-/// thrusters can. The effects are linear (GeoElements.hpp impulseEffect); the
-/// sizes are the non-negative least squares solution (Lawson & Hanson, Solving
+/// thrusters can. Each error is weighed by its share of the box (a drift
+/// error by the longitude it makes in drift_horizon_s), so that when the firings cannot
+/// meet all three the one with the most room gives. The effects are linear
+/// (GeoElements.hpp impulseEffect); the sizes are the non-negative least
+/// squares solution (Lawson & Hanson, Solving
 /// Least Squares Problems, 1974, ch. 23), exact over all subsets of the at
 /// most six firings. The i firings move off 90°/270° (at most
-/// max_ra_shift_rad) to face the inclination vector, "approximately 90° RA"
-/// in the seed's words. It keeps no state: each orbit's plan follows from
+/// max_ra_shift_rad, in steps of 2.5°) by the shift that leaves the least
+/// error, "approximately 90° RA" in the seed's words. It keeps no state: each orbit's plan follows from
 /// that orbit's mean elements alone.
 class StationKeepingPlanner {
  public:

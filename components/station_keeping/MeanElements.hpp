@@ -1,0 +1,54 @@
+// SPDX-License-Identifier: Apache-2.0
+#pragma once
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "components/station_keeping/GeoElements.hpp"
+
+namespace flatsat::station_keeping {
+
+struct MeanElementsParams {
+  double window_s = 86164.0905;  ///< [s] one sidereal day, what the daily oscillations repeat over, [3600, 864000]
+};
+
+/// Every problem with `params`, naming the field and its range; empty: valid.
+std::vector<std::string> validate(const MeanElementsParams& params);
+
+/// The mean synchronous elements of each window from the osculating ones:
+/// e and i averaged, which removes what turns with the spacecraft (the J2 and
+/// lunar-solar terms of one orbit), and the drift and longitude from a
+/// straight-line fit of the longitude, as an orbit determination gives them.
+/// The fit matters: at GEO the osculating semi-major axis under J2 is not the
+/// one of the mean motion (Δn/n ≈ 1.5 J2 (R/a)² = 3.7e-5), which read as a
+/// drift would walk the longitude by about 0.01°/day.
+class MeanElementsFilter {
+ public:
+  /// @throws std::invalid_argument naming the field.
+  explicit MeanElementsFilter(const MeanElementsParams& params);
+  void reset();
+  /// Takes the osculating elements at t_s [s]; the mean of the window that
+  /// ends with this sample when it is complete (longitude at t_s), else nothing.
+  std::optional<SynchronousElements> step(const SynchronousElements& osculating, double t_s);
+  /// A firing of this window, with its (linear) effect, given at t_s: the
+  /// samples before it are counted as if it had been given before them, so
+  /// the mean is that of the orbit after it (orbit determination that knows
+  /// its own manoeuvres). Without it, a window's mean would still hold the
+  /// inclination the firing removed.
+  void impulse(const ImpulseEffect& effect, double t_s);
+
+ private:
+  MeanElementsParams params_;
+  std::optional<double> start_s_;
+  int count_ = 0;
+  double last_longitude_ = 0.0, unwrapped_ = 0.0;
+  Eigen::Vector2d i_sum_{0.0, 0.0}, e_sum_{0.0, 0.0};
+  double a_sum_ = 0.0;
+  // Least squares of longitude on time, about the window's start, of the
+  // longitude with the drift the firings added taken out again.
+  double st_ = 0.0, sl_ = 0.0, stt_ = 0.0, stl_ = 0.0;
+  double added_drift_ = 0.0;    // [rad/s] the sum of the firings' drift changes
+  double added_moment_ = 0.0;   // [rad] Σ Δdrift_k t_k, so the added longitude is added_drift_ t − added_moment_
+};
+
+}  // namespace flatsat::station_keeping

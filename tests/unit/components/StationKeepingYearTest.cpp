@@ -1,0 +1,154 @@
+// SPDX-License-Identifier: Apache-2.0
+// Seed S3 closed over a year, algorithms only: the GEO plant (J2–J4, J22,
+// Sun, Moon, solar pressure with the Earth's shadow) under the mean-element
+// filter and the planner, each firing given as an impulse at its right
+// ascension. What the issue asks of the station box: longitude within
+// ±0.05°, inclination within 0.05°, eccentricity below 2e-4, in every state;
+// and no firing in the Earth's shadow. The whole box holds in the nominal
+// state only so far: with a pair failed the one d/e firing pair carries the
+// drift, e and part of i, and the plan lets the longitude go to 0.07–0.09°
+// and, with an outer pair failed, the inclination to 0.05–0.07° (issue 8).
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <sstream>
+
+#include <catch2/catch.hpp>
+
+#include "components/station_keeping/MeanElements.hpp"
+#include "components/station_keeping/StationKeepingPlanner.hpp"
+#include "sim/Constants.hpp"
+#include "sim/OrbitForces.hpp"
+#include "sim/OrbitPropagator.hpp"
+#include "sim/SunEphemeris.hpp"
+#include "sim/Time.hpp"
+
+using namespace flatsat;
+using namespace flatsat::station_keeping;
+
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+constexpr double kYear_s = 365.25 * 86400.0;
+constexpr double kStep_s = 600.0;
+const sim::UtcEpoch kEpoch{2027, 1, 1, 0, 0, 0.0};
+
+struct YearResult {
+  double longitude_dev_deg_max = 0.0;
+  double inclination_deg_max = 0.0;
+  double eccentricity_max = 0.0;  // of the daily means
+  double dv_m_s = 0.0;
+  std::map<int, int> firings;  // per thruster
+  int in_shadow = 0;
+};
+
+/// [m] The radius where the J2-strengthened gravity turns with the Earth.
+double synchronousRadius() {
+  const double w2 = std::pow(sim::kEarthRotationRate_rad_s, 2), R = sim::kEgm2008Radius_m;
+  double r = std::cbrt(sim::kMuEarth_m3_s2 / w2);
+  for (int k = 0; k < 20; ++k) r = std::cbrt(sim::kMuEarth_m3_s2 * (1.0 + 1.5 * sim::kEgm2008J2 * R * R / (r * r)) / w2);
+  return r;
+}
+
+YearResult flyYear(PairFailure failure, double station_rad) {
+  sim::OrbitForceParams f;
+  f.j22 = true;
+  f.drag = false;
+  f.mass_kg = 2000.0;
+  f.srp_area_m2 = 40.0;
+  f.reflectivity_coefficient = 1.3;
+  const double jd0 = sim::julianDate(kEpoch);
+  const double r = synchronousRadius(), ra0 = station_rad + sim::gmst_rad(jd0);
+  const Eigen::Vector3d east0(-std::sin(ra0), std::cos(ra0), 0.0);
+  sim::OrbitPropagator orbit(f, kEpoch,
+                             {r * Eigen::Vector3d(std::cos(ra0), std::sin(ra0), 0.0), sim::kEarthRotationRate_rad_s * r * east0});
+  StationKeepingParams params;
+  params.station_longitude_rad = station_rad;
+  params.mass_kg = f.mass_kg;
+  const StationKeepingPlanner planner(params);
+  MeanElementsFilter filter({});
+  std::vector<PlannedFiring> pending;
+  YearResult result;
+
+  const auto fire = [&](const PlannedFiring& firing) {
+    const auto& s = orbit.state();
+    const Eigen::Vector3d zenith = s.r_N_m.normalized();
+    const Eigen::Vector3d north = s.r_N_m.cross(s.v_N_m_s).normalized();
+    const Eigen::Vector3d d = firing.dv_m_s * forceDirection_orbital(firing.thruster, params.thrusters);
+    const Eigen::Vector3d dv_N = d.x() * north.cross(zenith) + d.y() * north + d.z() * zenith;
+    const Eigen::Vector3d sun = sim::sunPosition_N_m(jd0 + orbit.time_s() / 86400.0);
+    result.in_shadow += sim::illumination(s.r_N_m, sun) < 1.0;
+    result.dv_m_s += firing.dv_m_s;
+    filter.impulse(impulseEffect(d, std::atan2(s.r_N_m.y(), s.r_N_m.x()), s.v_N_m_s.norm(), sim::kEarthRotationRate_rad_s),
+                   orbit.time_s());
+    ++result.firings[static_cast<int>(firing.thruster)];
+    orbit.restart(orbit.time_s(), {s.r_N_m, s.v_N_m_s + dv_N});
+  };
+
+  // Seconds until the spacecraft reaches the firing's right ascension, 0 once
+  // it is there or just past it: a step aimed at it lands within a few
+  // millidegrees either side (the rate of right ascension is ω only on average).
+  const auto secondsTo = [&](const PlannedFiring& firing) {
+    const auto& s = orbit.state();
+    const double angle = std::remainder(firing.ra_rad - std::atan2(s.r_N_m.y(), s.r_N_m.x()), 2 * std::numbers::pi);
+    if (angle < 1e-6 && angle > -0.01) return 0.0;
+    return (angle < 0.0 ? angle + 2 * std::numbers::pi : angle) / sim::kEarthRotationRate_rad_s;
+  };
+  while (orbit.time_s() < kYear_s) {
+    // Firings due now go first: a new plan must not drop them.
+    const auto due = std::find_if(pending.begin(), pending.end(), [&](const auto& f) { return secondsTo(f) == 0.0; });
+    if (due != pending.end()) {
+      fire(*due);
+      pending.erase(due);
+      continue;
+    }
+    const double t = orbit.time_s(), jd = jd0 + t / 86400.0;
+    const auto& s = orbit.state();
+    const SynchronousElements osc = synchronousElements(s.r_N_m, s.v_N_m_s, sim::gmst_rad(jd));
+    const Eigen::Vector3d r_E = sim::R_EN(jd) * s.r_N_m;
+    result.longitude_dev_deg_max = std::max(
+        result.longitude_dev_deg_max,
+        std::abs(std::remainder(std::atan2(r_E.y(), r_E.x()) - station_rad, 2 * std::numbers::pi)) / kDeg);
+    result.inclination_deg_max = std::max(result.inclination_deg_max, osc.i.norm() / kDeg);
+    if (const auto mean = filter.step(osc, t)) {
+      result.eccentricity_max = std::max(result.eccentricity_max, mean->e.norm());
+      StationKeepingInputs in;
+      in.mean = *mean;
+      in.failure = failure;
+      in.sun_N_unit = sim::sunPosition_N_m(jd).normalized();
+      const auto plan = planner.step(in);
+      pending = plan.firings;
+    }
+    double dt = kStep_s;
+    for (const auto& firing : pending) dt = std::min(dt, secondsTo(firing));
+    orbit.step(dt);
+  }
+  result.dv_m_s *= kYear_s / orbit.time_s();
+  return result;
+}
+
+}  // namespace
+
+TEST_CASE("S3 over a year: the nominal state holds the station box, no state fires in the shadow", "[s3]") {
+  const double station = 19.2 * kDeg;  // Astra's slot: J22 pulls it east at 0.0016°/day²
+  const double v = 3074.66, cant = StationKeepingParams{}.thrusters.cant_rad;
+  for (const auto failure : {PairFailure::kNone, PairFailure::k22_28, PairFailure::k20_30, PairFailure::k24_26}) {
+    const YearResult r = flyYear(failure, station);
+    std::ostringstream firings;
+    for (const auto& [thruster, count] : r.firings) firings << " " << thruster << ":" << count;
+    WARN(nameOf(failure) << ": longitude " << r.longitude_dev_deg_max << " deg, i " << r.inclination_deg_max
+                         << " deg, e " << r.eccentricity_max << ", dv " << r.dv_m_s << " m/s/yr, firings" << firings.str());
+    CHECK(r.eccentricity_max < 2e-4);
+    CHECK(r.in_shadow == 0);
+    for (const auto& [thruster, count] : r.firings) CHECK(available(static_cast<GeoThruster>(thruster), failure));
+    // The inclination alone costs v Δi / cos θ a year (0.94°/yr in 2027: 62 m/s
+    // at θ = 36°; the typical 50 m/s of electric GEO station keeping is for
+    // thrust along the normal).
+    CHECK(r.dv_m_s > 0.95 * v * 0.94 * kDeg / std::cos(cant));
+    if (failure == PairFailure::kNone) {
+      CHECK(r.longitude_dev_deg_max < 0.05);
+      CHECK(r.inclination_deg_max < 0.05);
+      CHECK(r.dv_m_s < 1.25 * v * 0.94 * kDeg / std::cos(cant));
+    }
+  }
+}
