@@ -56,6 +56,7 @@ int runNode(int argc, char** argv, const std::string& default_name, Read&& read,
                        .participant_name = args.name,
                        .tuning = qosTuning(scenario, ownership_strength),
                        .identity = args.name};
+    options.tuning.data_sharing = !args.checkpoint && !args.restarted;  // the launcher may restart it
     useNetwork(options, networkFromEnvironment());
     Bus bus(options);
     auto node = make(bus, nodeOptions(scenario, args), params);

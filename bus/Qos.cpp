@@ -11,12 +11,8 @@ constexpr int kSteppedDepth = 64;       // > components that report StepDone in 
 constexpr int kStateReaderDepth = 64;   // > producers of one state topic
 
 template <class Qos>
-void common(Qos& qos, int depth) {
-  // No data-sharing delivery (Fast DDS's default AUTO on one host): a process
-  // SIGKILLed while its writer's pool was in use left the restarted reader
-  // asserting in ReaderPool::get_payload (Fast DDS 2.9.1, found by the soak, 88
-  // aborts in a row). Samples go through the shared-memory transport instead.
-  qos.data_sharing().off();
+void common(Qos& qos, int depth, const QosTuning& tuning) {
+  if (!tuning.data_sharing) qos.data_sharing().off();
   qos.reliability().kind = dds::RELIABLE_RELIABILITY_QOS;
   qos.durability().kind = dds::TRANSIENT_LOCAL_DURABILITY_QOS;
   qos.history().kind = dds::KEEP_LAST_HISTORY_QOS;
@@ -47,7 +43,7 @@ void state(Qos& qos) {
 
 dds::DataWriterQos writerQos(QosKind kind, const QosTuning& tuning) {
   dds::DataWriterQos qos;
-  common(qos, kind == QosKind::kState ? 1 : kSteppedDepth);
+  common(qos, kind == QosKind::kState ? 1 : kSteppedDepth, tuning);
   if (kind == QosKind::kState) state(qos);
   if (kind == QosKind::kStepped) {
     stepped(qos, tuning);
@@ -58,7 +54,7 @@ dds::DataWriterQos writerQos(QosKind kind, const QosTuning& tuning) {
 
 dds::DataReaderQos readerQos(QosKind kind, const QosTuning& tuning) {
   dds::DataReaderQos qos;
-  common(qos, kind == QosKind::kState ? kStateReaderDepth : kSteppedDepth);
+  common(qos, kind == QosKind::kState ? kStateReaderDepth : kSteppedDepth, tuning);
   if (kind == QosKind::kState) state(qos);
   if (kind == QosKind::kStepped) stepped(qos, tuning);
   return qos;

@@ -40,6 +40,14 @@ struct QosTuning {
   bool watch_liveliness = false;
   std::chrono::milliseconds lease{1000};  ///< [ms] deadline and liveliness lease, > 0
   std::int32_t ownership_strength = 10;   ///< [-] emulators 10, hardware bridges 100
+  /// Fast DDS's zero-copy data sharing between processes of one host (its
+  /// default). Off for processes the launcher may kill and start again
+  /// (`flatsat run --restart`): a process SIGKILLed while its writer's pool
+  /// was in use left the restarted reader asserting in
+  /// ReaderPool::get_payload (Fast DDS 2.9.1, found by the soak, 88 aborts in
+  /// a row). Their samples go through the shared-memory transport instead;
+  /// peers with data sharing on meet them there.
+  bool data_sharing = true;
 };
 
 /// Liveliness lease of the health topic: every node asserts it from a thread
