@@ -3,7 +3,6 @@
 
 #include <spdlog/spdlog.h>
 
-
 namespace flatsat::bus {
 
 Component::Component(Bus& bus, NodeOptions options)

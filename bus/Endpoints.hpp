@@ -86,11 +86,7 @@ class Writer {
   /// (in-process: at once, a write returns once every reader has the sample).
   bool waitForAcknowledgments(std::chrono::milliseconds timeout) {
     if (local_ != nullptr) return true;
-    const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(timeout).count();
-    return writer_->wait_for_acknowledgments(
-               eprosima::fastrtps::Duration_t(static_cast<int32_t>(ns / 1000000000),
-                                              static_cast<uint32_t>(ns % 1000000000))) ==
-           ReturnCode_t::RETCODE_OK;
+    return writer_->wait_for_acknowledgments(ddsDuration(timeout)) == ReturnCode_t::RETCODE_OK;
   }
   const std::string& topicName() const { return name_; }
   /// Tells readers this writer is alive (MANUAL_BY_TOPIC liveliness; in-process: nothing to tell).
@@ -180,8 +176,7 @@ class Reader : private eprosima::fastdds::dds::DataReaderListener {
   void requestDeadline(std::chrono::nanoseconds period) {
     if (reader_ == nullptr) return;
     auto qos = reader_->get_qos();
-    qos.deadline().period = eprosima::fastrtps::Duration_t(static_cast<int32_t>(period.count() / 1'000'000'000),
-                                                           static_cast<uint32_t>(period.count() % 1'000'000'000));
+    qos.deadline().period = ddsDuration(period);
     reader_->set_qos(qos);
   }
 

@@ -19,27 +19,27 @@ void common(Qos& qos, int depth, const QosTuning& tuning) {
   qos.history().depth = depth;
 }
 
-eprosima::fastrtps::Duration_t duration(std::chrono::milliseconds ms) {
-  return {static_cast<int32_t>(ms.count() / 1000),
-          static_cast<uint32_t>((ms.count() % 1000) * 1'000'000)};
-}
-
 template <class Qos>
 void stepped(Qos& qos, const QosTuning& tuning) {
   qos.ownership().kind = dds::EXCLUSIVE_OWNERSHIP_QOS;
   if (!tuning.watch_liveliness) return;
-  qos.deadline().period = duration(tuning.lease);
+  qos.deadline().period = ddsDuration(tuning.lease);
   qos.liveliness().kind = dds::MANUAL_BY_TOPIC_LIVELINESS_QOS;
-  qos.liveliness().lease_duration = duration(tuning.lease);
+  qos.liveliness().lease_duration = ddsDuration(tuning.lease);
 }
 
 template <class Qos>
 void state(Qos& qos) {
   qos.liveliness().kind = dds::MANUAL_BY_TOPIC_LIVELINESS_QOS;
-  qos.liveliness().lease_duration = duration(kHealthLease);
+  qos.liveliness().lease_duration = ddsDuration(kHealthLease);
 }
 
 }  // namespace
+
+eprosima::fastrtps::Duration_t ddsDuration(std::chrono::nanoseconds duration) {
+  return {static_cast<int32_t>(duration.count() / 1'000'000'000),
+          static_cast<uint32_t>(duration.count() % 1'000'000'000)};
+}
 
 dds::DataWriterQos writerQos(QosKind kind, const QosTuning& tuning) {
   dds::DataWriterQos qos;

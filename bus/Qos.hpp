@@ -50,6 +50,9 @@ struct QosTuning {
   bool data_sharing = true;
 };
 
+/// A chrono duration as a DDS one (QoS periods, waits).
+eprosima::fastrtps::Duration_t ddsDuration(std::chrono::nanoseconds duration);
+
 /// Liveliness lease of the health topic: every node asserts it from a thread
 /// of its own every third of it (Node), so a reader learns within the lease
 /// that a component's process is gone (MANUAL_BY_TOPIC: with AUTOMATIC a

@@ -35,7 +35,6 @@ struct LaunchOptions {
   int max_restarts = 20;  ///< [-] per component and run, >= 1
 };
 
-
 struct LaunchResult {
   bool ok = false;
   std::string failure;          ///< which component failed and how

@@ -13,11 +13,6 @@ namespace {
 
 constexpr double kDeg = std::numbers::pi / 180.0;
 
-double wrapRa(double ra_rad) {
-  const double wrapped = std::fmod(ra_rad, 2.0 * std::numbers::pi);
-  return wrapped < 0.0 ? wrapped + 2.0 * std::numbers::pi : wrapped;
-}
-
 using T = GeoThruster;
 
 /// The rows of one failure of an outer pair: 22/28 for i and MD; `pair` (the
@@ -46,6 +41,11 @@ std::vector<Firing> outerPairFailed(T north, T south, bool north_at_90_in_spring
 }
 
 }  // namespace
+
+double wrapRa(double angle_rad) {
+  const double wrapped = std::fmod(angle_rad, 2.0 * std::numbers::pi);
+  return wrapped < 0.0 ? wrapped + 2.0 * std::numbers::pi : wrapped;
+}
 
 Season seasonOf(const Eigen::Vector3d& sun_N_unit, double orbit_radius_m, double margin_rad) {
   Season season;

@@ -30,6 +30,9 @@ struct Season {
 /// now fires up to an orbit later, when the Sun has moved up to 0.4°).
 Season seasonOf(const Eigen::Vector3d& sun_N_unit, double orbit_radius_m, double margin_rad = 0.0);
 
+/// [rad] The right ascension of `angle_rad`, in [0, 2π).
+double wrapRa(double angle_rad);
+
 /// One firing per orbit: `thruster` at right ascension `ra_rad` (from the
 /// vernal equinox, [0, 2π)) for `job`.
 struct Firing {

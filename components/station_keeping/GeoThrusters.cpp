@@ -72,4 +72,12 @@ Eigen::Vector3d forceDirection_orbital(GeoThruster thruster, const GeoThrusterPa
   return {east * s * std::sin(alpha), -north_row * c, -s * std::cos(alpha)};
 }
 
+Eigen::Matrix3d R_N_orbital(const Eigen::Vector3d& r_N_m, const Eigen::Vector3d& v_N_m_s) {
+  const Eigen::Vector3d zenith = r_N_m.normalized();
+  const Eigen::Vector3d north = r_N_m.cross(v_N_m_s).normalized();
+  Eigen::Matrix3d R;
+  R << north.cross(zenith), north, zenith;
+  return R;
+}
+
 }  // namespace flatsat::station_keeping

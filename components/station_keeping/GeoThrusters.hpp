@@ -49,4 +49,9 @@ std::vector<std::string> validate(const GeoThrusterParams& params);
 /// no tangential part.
 Eigen::Vector3d forceDirection_orbital(GeoThruster thruster, const GeoThrusterParams& params);
 
+/// The local orbital frame above at the state (r, v) in N: its columns are
+/// east (north × zenith), north (along r × v) and zenith (along r), so
+/// v_N = R_N_orbital(r, v) · v_orbital.
+Eigen::Matrix3d R_N_orbital(const Eigen::Vector3d& r_N_m, const Eigen::Vector3d& v_N_m_s);
+
 }  // namespace flatsat::station_keeping

@@ -18,11 +18,6 @@ constexpr double kPi = std::numbers::pi;
 
 const double kSyncRadius_m = std::cbrt(sim::kMuEarth_m3_s2 / std::pow(sim::kEarthRotationRate_rad_s, 2));
 
-double wrap2Pi(double a) {
-  const double w = std::fmod(a, 2.0 * kPi);
-  return w < 0.0 ? w + 2.0 * kPi : w;
-}
-
 constexpr double kShiftStep_rad = 2.5 * kPi / 180.0;
 
 /// The change of (i, e, drift) as one vector in shares of the station box:
@@ -128,7 +123,7 @@ StationKeepingPlan StationKeepingPlanner::step(const StationKeepingInputs& in) c
   for (int c = -candidates; c <= candidates; ++c) {
     std::vector<Firing> shifted = at_nodes;
     for (auto& f : shifted) {
-      if (facesInclination(f)) f.ra_rad = wrap2Pi(f.ra_rad + c * kShiftStep_rad);
+      if (facesInclination(f)) f.ra_rad = wrapRa(f.ra_rad + c * kShiftStep_rad);
     }
     Effect5 rest = wanted;
     for (const auto& f : shifted) {

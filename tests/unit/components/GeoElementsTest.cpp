@@ -77,11 +77,8 @@ TEST_CASE("S3 impulse effects: the linear changes of i, e and drift match the ex
   std::normal_distribution<double> normal;
   for (int trial = 0; trial < 40; ++trial) {
     const auto state = orbit.at(trial * 2000.0);  // around the orbit
-    const Eigen::Vector3d zenith = state.r_N_m.normalized();
-    const Eigen::Vector3d north = state.r_N_m.cross(state.v_N_m_s).normalized();
-    const Eigen::Vector3d east = north.cross(zenith);
     const Eigen::Vector3d dv_orbital = 0.5 * Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized();
-    const Eigen::Vector3d dv_N = dv_orbital.x() * east + dv_orbital.y() * north + dv_orbital.z() * zenith;
+    const Eigen::Vector3d dv_N = R_N_orbital(state.r_N_m, state.v_N_m_s) * dv_orbital;
     const auto before = synchronousElements(state.r_N_m, state.v_N_m_s, 0.0);
     const auto after = synchronousElements(state.r_N_m, state.v_N_m_s + dv_N, 0.0);
     const double ra = std::atan2(state.r_N_m.y(), state.r_N_m.x());

@@ -52,13 +52,10 @@ SynchronousElements fly(const SynchronousElements& start, const StationKeepingPl
     // The elements are those of an orbit whose epoch is t_now.
     const sim::KeplerOrbit orbit(classical(now));
     const auto state = orbit.at(t_fire - t_now);
-    const Eigen::Vector3d zenith = state.r_N_m.normalized();
-    const Eigen::Vector3d north = state.r_N_m.cross(state.v_N_m_s).normalized();
-    const Eigen::Vector3d east = north.cross(zenith);
     const Eigen::Vector3d d = f.dv_m_s * forceDirection_orbital(f.thruster, t);
     // Re-based at t_fire: the longitude taken against kGmst0, which classical() adds back,
     // makes `now` the elements of an orbit whose epoch is t_fire.
-    now = synchronousElements(state.r_N_m, state.v_N_m_s + d.x() * east + d.y() * north + d.z() * zenith, kGmst0);
+    now = synchronousElements(state.r_N_m, state.v_N_m_s + R_N_orbital(state.r_N_m, state.v_N_m_s) * d, kGmst0);
     t_now = t_fire;
   }
   return now;

@@ -72,10 +72,8 @@ YearResult flyYear(PairFailure failure, double station_rad) {
 
   const auto fire = [&](const PlannedFiring& firing) {
     const auto& s = orbit.state();
-    const Eigen::Vector3d zenith = s.r_N_m.normalized();
-    const Eigen::Vector3d north = s.r_N_m.cross(s.v_N_m_s).normalized();
     const Eigen::Vector3d d = firing.dv_m_s * forceDirection_orbital(firing.thruster, params.thrusters);
-    const Eigen::Vector3d dv_N = d.x() * north.cross(zenith) + d.y() * north + d.z() * zenith;
+    const Eigen::Vector3d dv_N = R_N_orbital(s.r_N_m, s.v_N_m_s) * d;
     const Eigen::Vector3d sun = sim::sunPosition_N_m(jd0 + orbit.time_s() / 86400.0);
     result.in_shadow += sim::illumination(s.r_N_m, sun) < 1.0;
     result.dv_m_s += firing.dv_m_s;
