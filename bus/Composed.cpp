@@ -29,13 +29,25 @@ ComposedScheduler::ComposedScheduler(TimeMaster& master, std::vector<Component*>
     : master_(master), order_(std::move(components)) {}
 
 void ComposedScheduler::run(const std::function<void(std::uint64_t)>& after_step) {
-  for (Component* c : order_) on(*c, [c] { c->start(); });
-  on(master_, [this] { master_.start(); });
+  start();
   for (std::uint64_t k = 0; k <= master_.finalStep(); ++k) {
-    if (shutdownRequested()) throw NodeFailure("interrupted at step " + std::to_string(k));
-    runStep(k);
+    step(k);
     if (after_step) after_step(k);
   }
+  stop();
+}
+
+void ComposedScheduler::start() {
+  for (Component* c : order_) on(*c, [c] { c->start(); });
+  on(master_, [this] { master_.start(); });
+}
+
+void ComposedScheduler::step(std::uint64_t k) {
+  if (shutdownRequested()) throw NodeFailure("interrupted at step " + std::to_string(k));
+  runStep(k);
+}
+
+void ComposedScheduler::stop() {
   on(master_, [this] { master_.stop(); });
   for (Component* c : order_) {
     if (on(*c, [c] { return c->turn(); }) != Component::Turn::kStopped) {

@@ -30,6 +30,12 @@ class ComposedScheduler {
   /// Throws NodeFailure naming the node that failed, or on SIGINT/SIGTERM.
   void run(const std::function<void(std::uint64_t)>& after_step = {});
 
+  /// run() in parts, for several rigs stepped side by side on one thread.
+  void start();
+  void step(std::uint64_t k);
+  void stop();
+  std::uint64_t finalStep() const { return master_.finalStep(); }
+
  private:
   void runStep(std::uint64_t k);
 

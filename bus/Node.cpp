@@ -173,6 +173,7 @@ void Node::publishHealth(msg::ComponentState state, std::uint64_t steps_done,
   for (const auto& input : inputs_) copies += input->copiesDropped();
   health.copies_dropped(copies);
   health.deadlines_missed(deadlines_missed_.load());
+  addToHealth(health);
   health_.write(health);
 }
 

@@ -57,6 +57,7 @@ class Recording {
 
  private:
   void exec(const char* sql) const;
+  bool holdsSamples() const;
   std::string path_;
   sqlite3* db_ = nullptr;
   sqlite3_stmt* insert_ = nullptr;

@@ -103,6 +103,10 @@ Scenario loadScenario(const std::string& path) {
   top.read("domain_id", scenario.domain_id);
   if (scenario.domain_id > 232) top.problem("domain_id", "must be in 0..232");
   top.read("seed", scenario.seed);
+  top.read("spacecraft_count", scenario.spacecraft_count);
+  if (scenario.spacecraft_count < 1 || scenario.spacecraft_count > kMaxSpacecraft) {
+    top.problem("spacecraft_count", "must be in 1.." + std::to_string(kMaxSpacecraft));
+  }
   top.read("step_s", scenario.step_s, "s");
   if (!(scenario.step_s >= 1e-3 && scenario.step_s <= 10.0)) {
     top.problem("step_s", "must be in [1 ms, 10 s]");

@@ -33,6 +33,8 @@ struct ComponentEntry {
   std::string role = "emulated";
 };
 
+inline constexpr std::uint32_t kMaxSpacecraft = 64;
+
 /// The top level of a scenario file. Component parameters stay as YAML
 /// nodes: each component reads its own section (componentParams()).
 struct Scenario {
@@ -42,6 +44,9 @@ struct Scenario {
   Pacing pacing = Pacing::kLockstep;  ///< mode: lockstep | paced
   std::uint32_t domain_id = 0;     ///< [-] 0..232; FLATSAT_DOMAIN overrides
   std::uint64_t seed = 1;          ///< [-] base seed; each component derives its own
+  /// [-] 1..kMaxSpacecraft copies of the rig, spacecraft i on its own bus
+  /// (composed: its own in-process hub; else domain_id + i) with seed + i.
+  std::uint32_t spacecraft_count = 1;
   double step_s = 0.1;             ///< [s] base period, 1e-3..10
   double duration_s = 0.0;         ///< [s] run length (or duration_orbits)
   double duration_orbits = 0.0;    ///< [-] run length in orbital periods

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "bus/TimeMaster.hpp"
 
+#include <sys/prctl.h>
+
 #include <spdlog/spdlog.h>
 
 namespace flatsat::bus {
@@ -144,10 +146,18 @@ void TimeMaster::waitForDone(std::uint64_t k) {
 
 void TimeMaster::waitForTick(std::chrono::steady_clock::time_point tick) {
   std::unique_lock lock(mutex_);
-  while (std::chrono::steady_clock::now() < tick) {
+  // Sleep to kTickSpin before the tick, then spin: a sleeping thread wakes
+  // up to the timer slack plus the scheduler's latency late, which on a
+  // loaded 2-vCPU guest was 2 ms at the 99th percentile (issue 10 asks for
+  // 200 µs). The spin costs kTickSpin of one core per period.
+  while (std::chrono::steady_clock::now() < tick - kTickSpin) {
     if (interrupted()) throw NodeFailure(name() + ": interrupted");
-    changed_.wait_until(lock, tick);
+    changed_.wait_until(lock, tick - kTickSpin);
   }
+  lock.unlock();
+  while (std::chrono::steady_clock::now() < tick) {
+  }
+  lock.lock();
   // Paced steps wait for nobody; who was late shows in their health.
   done_.clear();
   findLate(tick);
@@ -192,6 +202,7 @@ void TimeMaster::start() {
   publishHealth(msg::ComponentState::RUNNING, 0, "granting steps");
   spdlog::info("{}: every component ready; running steps 0..{} {}", name(), timing_.final_step,
                paced() ? "paced on the wall clock" : "in lockstep");
+  if (paced()) ::prctl(PR_SET_TIMERSLACK, 1UL);  // this thread's sleeps end on time, not up to 50 µs late
   start_ = std::chrono::steady_clock::now();
   next_health_ = start_ + kHealthPeriod;
 }
@@ -232,6 +243,9 @@ void TimeMaster::publishFaultEvents(const StepContext& ctx) {
 }
 
 void TimeMaster::beginStep(std::uint64_t k) {
+  if (paced()) {
+    tick_lateness_.add(std::chrono::steady_clock::now() - (start_ + std::chrono::nanoseconds(timing_.period_ns) * k));
+  }
   const StepContext ctx = context(k);
   publishFaultEvents(ctx);
   publishStep(ctx);
@@ -256,6 +270,13 @@ void TimeMaster::endStep(std::uint64_t k) {
     publishHealth(msg::ComponentState::RUNNING, k + 1, "granting steps");
     next_health_ += kHealthPeriod;
   }
+}
+
+void TimeMaster::addToHealth(msg::Health& health) const {
+  if (!paced()) return;
+  health.tick_late_us_p50(static_cast<float>(tick_lateness_.quantileUs(0.50)));
+  health.tick_late_us_p99(static_cast<float>(tick_lateness_.quantileUs(0.99)));
+  health.tick_late_us_max(static_cast<float>(tick_lateness_.maxUs()));
 }
 
 void TimeMaster::stop() {

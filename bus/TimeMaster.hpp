@@ -7,6 +7,7 @@
 
 #include "bus/CommandAcks.hpp"
 #include "bus/Node.hpp"
+#include "bus/TickLateness.hpp"
 
 namespace flatsat::bus {
 
@@ -59,7 +60,11 @@ class TimeMaster : public Node {
   /// missed arrives after all (kResendAfter).
   void resendStep(std::uint64_t k, const std::string& missing);
   void onStall(std::uint64_t k) override { resendStep(k, " inputs of " + name()); }
+  /// Paced: waits for the wall-clock tick, the last kTickSpin of it spinning.
   void waitForTick(std::chrono::steady_clock::time_point tick);
+  static constexpr auto kTickSpin = std::chrono::microseconds(300);
+  void addToHealth(msg::Health& health) const override;
+  TickLateness tick_lateness_;  ///< paced: each grant's lateness against start_ + k periods
   std::string failedComponents() const;
   /// The acknowledgements of bus faults commanded since the last step, a
   /// FaultEvent for each bus fault that began or stopped acting at step k, and

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 #pragma once
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -18,6 +19,14 @@ std::vector<std::string> composedProblems(const bus::Scenario& scenario);
 /// data-flow order on this thread (bus/Composed.hpp). Logs go to
 /// run_dir/logs/composed.log; prefixes are not used. The scenario must
 /// have no composedProblems().
+/// Every spacecraft of the scenario (spacecraft_count) composed on this
+/// thread, stepped side by side, each on its own in-process hub.
 LaunchResult runComposed(const bus::Scenario& scenario, const LaunchOptions& options);
+
+/// Where spacecraft i records: the run directory itself when it is alone,
+/// else its spacecraft-<i> subdirectory.
+std::string spacecraftDirectory(const std::string& run_dir, std::uint32_t count, std::uint32_t i);
+/// The scenario as spacecraft i runs it: seed + i, domain_id + i.
+bus::Scenario spacecraftScenario(const bus::Scenario& scenario, std::uint32_t i);
 
 }  // namespace flatsat::tools

@@ -131,6 +131,7 @@ nlohmann::ordered_json summarize(const bus::Scenario& scenario, const std::strin
   std::map<std::string, std::array<std::uint64_t, 3>> lateness;  // stale, overruns, deadlines missed
   nlohmann::ordered_json dropped = nlohmann::ordered_json::object();  // last count by component
   std::map<std::string, std::uint64_t> refused;                     // last count by component
+  std::array<double, 3> tick_late{};  // [µs] the paced time master's last p50, p99, max
   using HealthDef = std::remove_cvref_t<decltype(bus::topics::kHealth)>;
   recording.forEach(std::string(bus::topics::kHealth.name),
                     [&](std::uint64_t, const std::string& source, const std::vector<std::uint8_t>& bytes) {
@@ -138,7 +139,17 @@ nlohmann::ordered_json summarize(const bus::Scenario& scenario, const std::strin
                       lateness[source] = {health.stale_inputs(), health.overruns(), health.deadlines_missed()};
                       dropped[source] = health.samples_dropped();
                       refused[source] = health.commands_refused();
+                      if (health.tick_late_us_max() > 0) {
+                        tick_late = {health.tick_late_us_p50(), health.tick_late_us_p99(), health.tick_late_us_max()};
+                      }
                     });
+  if (scenario.pacing == bus::Pacing::kPaced) {
+    // How late the time master granted the steps, as it measured them
+    // (bus/TickLateness.hpp): the tick itself, not its delivery.
+    s["tick_lateness_us_p50"] = tick_late[0];
+    s["tick_lateness_us_p99"] = tick_late[1];
+    s["tick_lateness_us_max"] = tick_late[2];
+  }
   std::uint64_t stale = 0, overruns = 0, deadlines_missed = 0;
   for (const auto& [component, counts] : lateness) {
     stale += counts[0];
@@ -220,6 +231,8 @@ std::string summaryTable(const nlohmann::ordered_json& summary) {
       out << buffer;
     } else if (value.is_string()) {
       out << value.get<std::string>();
+    } else if (value.is_array() && !value.empty() && value.front().is_object()) {
+      out << value.size() << " summaries (spacecraft-<i>/summary.json)";
     } else {
       out << value.dump();
     }

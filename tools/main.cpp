@@ -23,6 +23,7 @@
 #include "tools/FieldCommand.hpp"
 #include "tools/CmdCommand.hpp"
 #include "tools/Composed.hpp"
+#include "tools/Fleet.hpp"
 #include "tools/EchoCommand.hpp"
 #include "tools/ExportCommand.hpp"
 #include "tools/HealthCommand.hpp"
@@ -192,7 +193,7 @@ int run(const RunOptions& o, nlohmann::ordered_json* summary_out = nullptr) {
   bus::Scenario scenario;
   if (!o.resume.empty()) {
     if (!prepareResumedRun(o, original, scenario)) return kExitBadInput;
-  } else if (fs::exists(fs::path(run_dir) / "recording.sqlite")) {
+  } else if (fs::exists(fs::path(run_dir) / "recording.sqlite") || fs::exists(fs::path(run_dir) / "spacecraft-0")) {
     std::cerr << "error: " << run_dir << " already holds a recording; choose another --out\n";
     return kExitBadInput;
   }
@@ -229,6 +230,13 @@ int run(const RunOptions& o, nlohmann::ordered_json* summary_out = nullptr) {
     if (new_run_dir) fs::remove_all(run_dir);
     return kExitBadInput;
   }
+  if (scenario.spacecraft_count > 1 &&
+      (!o.resume.empty() || o.restart || !o.externals.empty() || !o.prefixes.empty() || !o.secure.empty())) {
+    std::cerr << "error: " << o.scenario << ": spacecraft_count " << scenario.spacecraft_count
+              << ": --resume, --restart, --external, --prefix and --secure take a run of one spacecraft\n";
+    if (new_run_dir) fs::remove_all(run_dir);
+    return kExitBadInput;
+  }
   const std::string bin_dir = fs::canonical("/proc/self/exe").parent_path().string();
   tools::LaunchOptions launch_options{bin_dir, run_dir, fs::absolute(scenario.file).string(),
                                       o.log_level, !o.quiet};
@@ -255,8 +263,9 @@ int run(const RunOptions& o, nlohmann::ordered_json* summary_out = nullptr) {
   }
   tools::LaunchResult result;
   try {
-    result = o.composed ? tools::runComposed(scenario, launch_options)
-                        : tools::launch(scenario, launch_options);
+    result = o.composed                      ? tools::runComposed(scenario, launch_options)
+             : scenario.spacecraft_count > 1 ? tools::launchFleet(scenario, launch_options)
+                                             : tools::launch(scenario, launch_options);
   } catch (const std::exception& e) {  // the launcher's own participant (FLATSAT_PEERS, ...)
     std::cerr << "error: " << e.what() << "\n";
     return kExitFailed;
@@ -284,7 +293,9 @@ int run(const RunOptions& o, nlohmann::ordered_json* summary_out = nullptr) {
   }
   nlohmann::ordered_json summary;
   try {
-    summary = tools::summarize(scenario, (fs::path(run_dir) / "recording.sqlite").string(), result);
+    summary = scenario.spacecraft_count > 1
+                  ? tools::fleetSummary(scenario, run_dir, result)
+                  : tools::summarize(scenario, (fs::path(run_dir) / "recording.sqlite").string(), result);
   } catch (const std::exception& e) {  // the recording is kept as it is for a look
     std::cerr << "error: the run ended but its summary failed: " << e.what() << "\n";
     return kExitFailed;
@@ -299,7 +310,8 @@ int run(const RunOptions& o, nlohmann::ordered_json* summary_out = nullptr) {
   if (o.plots) {
     // A run that worked stays a success when only its figures fail (no gnuplot).
     const fs::path plots = fs::path(run_dir) / "plots";
-    if (tools::plotRecording((fs::path(run_dir) / "recording.sqlite").string(), plots.string(),
+    const fs::path first = tools::spacecraftDirectory(run_dir, scenario.spacecraft_count, 0);
+    if (tools::plotRecording((first / "recording.sqlite").string(), plots.string(),
                              false) != 0) {
       std::cerr << "flatsat: warning: the figures were not drawn; the run itself succeeded\n";
     } else if (!o.quiet && !o.json) {
@@ -335,7 +347,35 @@ int pacedBench(const std::string& scenario, double paced_s) {
   std::printf("paced_jitter_us_p99=%.1f\n", summary["tick_jitter_us_p99"].get<double>());
   std::printf("paced_jitter_us_max=%.1f\n", summary["tick_jitter_us_max"].get<double>());
   std::printf("paced_ticks_missed=%llu\n", summary["ticks_missed"].get<unsigned long long>());
+  // The same ticks as the time master granted them: how late against its grid.
+  std::printf("paced_tick_lateness_us_p50=%.1f\n", summary["tick_lateness_us_p50"].get<double>());
+  std::printf("paced_tick_lateness_us_p99=%.1f\n", summary["tick_lateness_us_p99"].get<double>());
+  std::printf("paced_tick_lateness_us_max=%.1f\n", summary["tick_lateness_us_max"].get<double>());
   fs::remove_all(o.out);
+  return 0;
+}
+
+/// N = 1, 4, 16 spacecraft of the composed run `composed` side by side in
+/// one process (spacecraft_count): the cost of a spacecraft-step at each N,
+/// and how it grew from N = 1 (issue 10: at most linearly, so <= 1).
+int fleetBench(RunOptions composed, bool quick) {
+  // Long enough that each spacecraft's first steps (its recording's first
+  // pages, its models' first calls) weigh little against the rest.
+  composed.overrides.push_back(quick ? "duration_s=1000" : "duration_s=3000");
+  double us_alone = 0.0;
+  for (const int n : {1, 4, 16}) {
+    RunOptions o = composed;
+    o.overrides.push_back("spacecraft_count=" + std::to_string(n));
+    nlohmann::ordered_json summary;
+    if (const int rc = run(o, &summary); rc != 0) return rc;
+    const double per_s = summary["steps_per_second"].get<double>() * n;
+    const double us = 1e6 / per_s;
+    if (n == 1) us_alone = us;
+    std::printf("fleet_n%d_spacecraft_steps_per_s=%.1f\n", n, per_s);
+    std::printf("fleet_n%d_us_per_spacecraft_step=%.2f\n", n, us);
+    if (n > 1) std::printf("fleet_n%d_cost_growth=%.3f\n", n, us / us_alone);
+    fs::remove_all(o.out);
+  }
   return 0;
 }
 
@@ -389,6 +429,7 @@ int bench(const std::string& scenario, double duration_s, bool quick) {
     fs::remove_all(out);
   }
   if (composed_rc != 0) return composed_rc;
+  if (const int rc = fleetBench(o, quick); rc != 0) return rc;
   return pacedBench(scenario, paced_s);
 }
 

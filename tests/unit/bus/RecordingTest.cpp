@@ -67,3 +67,35 @@ TEST_CASE("Recording finds a topic's last step and erases what came after a step
   std::filesystem::remove(path.string() + "-wal");
   std::filesystem::remove(path.string() + "-shm");
 }
+
+TEST_CASE("A recording still open (as after a crash) answers without its index, as it does closed",
+          "[recording]") {
+  const auto path = std::filesystem::temp_directory_path() /
+                    ("flatsat-recording-index-" + std::to_string(::getpid()) + ".sqlite");
+  std::filesystem::remove(path);
+  std::string digest_open;
+  std::vector<std::pair<std::uint64_t, std::string>> seen_open;
+  {
+    Recording writer(path.string(), Recording::Access::kCreate);
+    // Out of step order and interleaved, as samples arrive.
+    for (std::uint64_t step : {3u, 1u, 2u, 0u}) {
+      writer.insert("t", step, "b", 0, {static_cast<std::uint8_t>(step)});
+      writer.insert("t", step, "a", 0, {static_cast<std::uint8_t>(10 + step)});
+      writer.insert("u", step, "a", 0, {7});
+    }
+    writer.commit();
+    const Recording reader(path.string(), Recording::Access::kRead);
+    digest_open = reader.digest({});
+    seen_open = visit(reader, Recording::Order::kStep);
+    CHECK(reader.count("t") == 8);
+    CHECK(reader.lastStep("u") == 3u);
+  }
+  const Recording closed(path.string(), Recording::Access::kRead);
+  CHECK(closed.digest({}) == digest_open);
+  CHECK(visit(closed, Recording::Order::kStep) == seen_open);
+  CHECK(seen_open.front() == std::make_pair(std::uint64_t{0}, std::string("a")));
+  CHECK(seen_open.back() == std::make_pair(std::uint64_t{3}, std::string("b")));
+  std::filesystem::remove(path);
+  std::filesystem::remove(path.string() + "-wal");
+  std::filesystem::remove(path.string() + "-shm");
+}
