@@ -63,6 +63,8 @@ class TimeMaster : public Node {
   /// Paced: waits for the wall-clock tick, the last kTickSpin of it spinning.
   void waitForTick(std::chrono::steady_clock::time_point tick);
   static constexpr auto kTickSpin = std::chrono::microseconds(300);
+  /// Paced: this thread's timer slack to 1 ns and, where permitted, SCHED_FIFO.
+  void keepTime() const;
   void addToHealth(msg::Health& health) const override;
   TickLateness tick_lateness_;  ///< paced: each grant's lateness against start_ + k periods
   std::string failedComponents() const;
