@@ -12,6 +12,9 @@ namespace flatsat::bus {
 
 namespace {
 
+/// A 64 MiB page cache (SQLite's default is 2 MiB): for the reads in index
+/// order and for the index's sort at close.
+constexpr const char* kLargeCache = "PRAGMA cache_size=-65536";
 constexpr const char* kCreateIndex = "CREATE INDEX IF NOT EXISTS samples_by_topic ON samples (topic, source, step)";
 
 struct Statement {
@@ -52,7 +55,7 @@ Recording::Recording(const std::string& path, Access access) : path_(path) {
   // Mapping the file and a 64 MiB cache make those reads memory reads.
   if (access == Access::kRead) {
     exec("PRAGMA mmap_size=1073741824");
-    exec("PRAGMA cache_size=-65536");
+    exec(kLargeCache);
     return;
   }
   writing_ = true;
@@ -80,7 +83,7 @@ Recording::~Recording() {
   if (writing_) {
     // The index's sort in memory, not through temporary files.
     sqlite3_exec(db_, "PRAGMA temp_store=MEMORY", nullptr, nullptr, nullptr);
-    sqlite3_exec(db_, "PRAGMA cache_size=-65536", nullptr, nullptr, nullptr);
+    sqlite3_exec(db_, kLargeCache, nullptr, nullptr, nullptr);
     sqlite3_exec(db_, kCreateIndex, nullptr, nullptr, nullptr);
     sqlite3_exec(db_, "COMMIT", nullptr, nullptr, nullptr);
   }

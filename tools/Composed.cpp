@@ -42,7 +42,6 @@ class ComposedLog {
   std::shared_ptr<spdlog::logger> previous_;
 };
 
-
 }  // namespace
 
 std::vector<std::string> composedProblems(const bus::Scenario& scenario) {

@@ -90,10 +90,8 @@ LaunchResult launchFleet(const bus::Scenario& scenario, const LaunchOptions& opt
     running.erase(it);
     const bool ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
     if (!ok && result.failure.empty()) {
-      result.failure = "spacecraft " + std::to_string(i) + " failed (" +
-                       (WIFEXITED(status) ? "exit status " + std::to_string(WEXITSTATUS(status))
-                                          : "killed by signal " + std::to_string(WTERMSIG(status))) +
-                       "); see " + logOf(options, i);
+      result.failure =
+          "spacecraft " + std::to_string(i) + " failed (" + describeExit(status) + "); see " + logOf(options, i);
       stopAll();
     }
   }

@@ -43,12 +43,6 @@ struct Child {
   bool restarted = false;  // started again mid-run: it takes its checkpoint back
 };
 
-std::string describeExit(int status) {
-  if (WIFEXITED(status)) return "exit code " + std::to_string(WEXITSTATUS(status));
-  if (WIFSIGNALED(status)) return "killed by signal " + std::to_string(WTERMSIG(status));
-  return "stopped";
-}
-
 std::string tail(const std::string& path, std::size_t lines) {
   std::ifstream in(path);
   std::vector<std::string> all;

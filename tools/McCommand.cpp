@@ -6,7 +6,6 @@
 
 #include <cerrno>
 #include <chrono>
-#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
@@ -42,20 +41,12 @@ struct McOptions {
   std::optional<std::uint64_t> seed0;
 };
 
-constexpr const char* kRecordEvery = "components.recorder.record_every_steps";
-
-/// A campaign's runs record one step a second (as 42 writes its output
-/// files), unless the campaign sets the recorder's decimation itself: a
-/// campaign reads its table from the summaries, and inserting every sample
-/// of every run was most of a run's cost (a one-orbit default run: 7.1 s at
-/// every step, 1.8 s at 1 Hz).
-std::optional<std::string> recordingDecimation(const std::vector<std::string>& overrides, double step_s) {
+/// Whether the campaign sets the recorder's decimation itself.
+bool setsRecordingDecimation(const std::vector<std::string>& overrides) {
   for (const auto& o : overrides) {
-    if (o.rfind(kRecordEvery, 0) == 0) return std::nullopt;
+    if (o.rfind("components.recorder.record_every_steps", 0) == 0) return true;
   }
-  const long every = std::lround(1.0 / step_s);
-  if (every <= 1) return std::nullopt;
-  return std::string(kRecordEvery) + "=" + std::to_string(every);
+  return false;
 }
 
 /// The scenario with the campaign's overrides (and the recording decimation
@@ -70,8 +61,12 @@ std::vector<std::string> checkCampaign(McOptions& o, bus::Scenario& scenario) {
   }
   try {
     scenario = bus::loadScenario(writeRunScenario(o.scenario, o.out, o.overrides));
-    if (const auto decimation = recordingDecimation(o.overrides, scenario.step_s)) {
-      o.overrides.push_back(*decimation);
+    // A campaign's runs record one step a second unless it says otherwise:
+    // its table comes from the summaries, and inserting every sample of every
+    // run was most of a run's cost (a one-orbit default run: 7.1 s at every
+    // step, 1.8 s at 1 Hz).
+    if (!setsRecordingDecimation(o.overrides)) {
+      o.overrides.push_back(recordOnceASecond(scenario.step_s));
       scenario = bus::loadScenario(writeRunScenario(o.scenario, o.out, o.overrides));
     }
   } catch (const std::exception& e) {

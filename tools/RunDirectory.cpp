@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "tools/RunDirectory.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
@@ -47,6 +49,10 @@ std::string writeRunScenario(const std::string& scenario_file, const std::string
   }
   fs::rename(partial, out);
   return out;
+}
+
+std::string recordOnceASecond(double step_s) {
+  return "components.recorder.record_every_steps=" + std::to_string(std::max(1L, std::lround(1.0 / step_s)));
 }
 
 std::string defaultRunDirectory(const std::string& scenario_name) {

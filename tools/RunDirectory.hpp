@@ -12,6 +12,11 @@ namespace flatsat::tools {
 std::string writeRunScenario(const std::string& scenario_file, const std::string& run_dir,
                              const std::vector<std::string>& overrides);
 
+/// The override that records one step per simulated second at base period
+/// step_s, as 42 writes its output files (every step when step_s >= 1 s).
+/// The recorder's transactions then hold 50 recorded steps by default.
+std::string recordOnceASecond(double step_s);
+
 /// runs/<scenario name>-<UTC timestamp> under the current directory.
 std::string defaultRunDirectory(const std::string& scenario_name);
 

@@ -3,14 +3,22 @@
 
 #include <fcntl.h>
 #include <spawn.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cstring>
 #include <stdexcept>
+#include <string>
 
 extern char** environ;
 
 namespace flatsat::tools {
+
+std::string describeExit(int status) {
+  if (WIFEXITED(status)) return "exit code " + std::to_string(WEXITSTATUS(status));
+  if (WIFSIGNALED(status)) return "killed by signal " + std::to_string(WTERMSIG(status));
+  return "stopped";
+}
 
 pid_t spawnLogged(const std::vector<std::string>& args, const std::string& log) {
   posix_spawn_file_actions_t actions;

@@ -11,4 +11,7 @@ namespace flatsat::tools {
 /// stderr into `log`; throws std::runtime_error naming it when it cannot.
 pid_t spawnLogged(const std::vector<std::string>& args, const std::string& log);
 
+/// A waitpid status in words: "exit code N", "killed by signal N".
+std::string describeExit(int status);
+
 }  // namespace flatsat::tools

@@ -410,18 +410,15 @@ int bench(const std::string& scenario, double duration_s, bool quick) {
   }
   if (rc != 0) return rc;
   // The same scenario composed into one process, its recording decimated to
-  // 1 Hz as 42 writes its output files (issue 10's composed figure), each
-  // transaction holding as many recorded steps as the recorder's default.
+  // 1 Hz as 42 writes its output files (issue 10's composed figure).
   bus::Scenario loaded;
   if (!loadChecked(scenario, "", loaded)) return kExitBadInput;
   if (!tools::composedProblems(loaded).empty()) {
     std::cerr << "flatsat bench: " << scenario << " cannot run composed; no composed figures\n";
     return pacedBench(scenario, paced_s);
   }
-  const long every = std::max(1L, std::lround(1.0 / loaded.step_s));
   o.composed = true;
-  o.overrides.push_back("components.recorder.record_every_steps=" + std::to_string(every));
-  o.overrides.push_back("components.recorder.commit_every_steps=" + std::to_string(50 * every));
+  o.overrides.push_back(tools::recordOnceASecond(loaded.step_s));
   const int composed_rc = run(o, &summary);
   if (composed_rc == 0) {
     std::printf("composed_steps_per_s=%.1f\n", summary["steps_per_second"].get<double>());

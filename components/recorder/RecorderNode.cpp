@@ -152,8 +152,9 @@ RecorderParams readParams(const bus::Scenario& scenario, const bus::NodeArgs& ar
   // each commit rewrites the pages it touched into the WAL, so committing
   // every 50 steps of a recording decimated to 1 in 10 wrote each page five
   // times as often (a one-orbit run: 25,757 pwrite calls).
-  if (!r.has("commit_every_steps") && p.record_every_steps >= 1) {
-    p.commit_every_steps = std::min<std::uint32_t>(100000, p.commit_every_steps * std::min<std::uint32_t>(p.record_every_steps, 2000));
+  if (!r.has("commit_every_steps")) {
+    p.commit_every_steps = static_cast<std::uint32_t>(
+        std::min<std::uint64_t>(100000, std::uint64_t{p.commit_every_steps} * std::max(1u, p.record_every_steps)));
   }
   r.read("commit_every_steps", p.commit_every_steps);
   r.problems(p.validate());
