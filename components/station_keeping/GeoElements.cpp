@@ -54,6 +54,7 @@ ImpulseEffect impulseEffect(const Eigen::Vector3d& dv_orbital_m_s, double ra_rad
   effect.i = normal * Eigen::Vector2d(s, -c);
   effect.e = radial * Eigen::Vector2d(s, -c) + 2.0 * tangential * Eigen::Vector2d(c, s);
   effect.drift_rad_s = -3.0 * n_rad_s * tangential;
+  effect.longitude_rad = -2.0 * radial;
   return effect;
 }
 

@@ -31,9 +31,11 @@ SynchronousElements synchronousElements(const Eigen::Vector3d& r_N_m, const Eige
 /// (Soop 1994, ch. 5):
 ///   Δi = ΔV_N / v (sin s, −cos s)
 ///   Δe = ΔV_R / v (sin s, −cos s) + 2 ΔV_T / v (cos s, sin s)
-///   Δdrift = −3 n ΔV_T / v.
+///   Δdrift = −3 n ΔV_T / v
+///   Δl = −2 ΔV_R / v (the mean longitude jumps at a radial impulse).
 struct ImpulseEffect {
   double drift_rad_s = 0.0;
+  double longitude_rad = 0.0;
   Eigen::Vector2d e{0.0, 0.0};
   Eigen::Vector2d i{0.0, 0.0};
 };

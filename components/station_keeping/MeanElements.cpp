@@ -33,11 +33,13 @@ std::optional<SynchronousElements> MeanElementsFilter::step(const SynchronousEle
   i_sum_ += osculating.i;
   e_sum_ += osculating.e;
   a_sum_ += osculating.semi_major_axis_m;
-  const double longitude = unwrapped_ - (added_drift_ * t - added_moment_);  // on the first drift's line
-  st_ += t;
-  sl_ += longitude;
-  stt_ += t * t;
-  stl_ += t * longitude;
+  // On the line of the window's first drift and longitude.
+  const double longitude = unwrapped_ - (added_drift_ * t - added_moment_) - added_jump_;
+  const double phase = 2.0 * std::numbers::pi * t / params_.window_s;
+  Eigen::Matrix<double, 6, 1> basis;
+  basis << 1.0, t / params_.window_s, std::cos(phase), std::sin(phase), std::cos(2.0 * phase), std::sin(2.0 * phase);
+  normal_ += basis * basis.transpose();
+  moment_ += basis * longitude;
   if (t < params_.window_s) return std::nullopt;
 
   const double n = count_;
@@ -45,12 +47,11 @@ std::optional<SynchronousElements> MeanElementsFilter::step(const SynchronousEle
   mean.i = i_sum_ / n;
   mean.e = e_sum_ / n;
   mean.semi_major_axis_m = a_sum_ / n;
-  const double denominator = n * stt_ - st_ * st_;
-  const double slope = denominator > 0.0 ? (n * stl_ - st_ * sl_) / denominator : 0.0;
-  const double intercept = (sl_ - slope * st_) / n;
+  const Eigen::Matrix<double, 6, 1> fit = normal_.ldlt().solve(moment_);
+  const double slope = fit(1) / params_.window_s;
   mean.drift_rad_s = slope + added_drift_;
   mean.longitude_rad =
-      std::remainder(intercept + slope * t + added_drift_ * t - added_moment_, 2.0 * std::numbers::pi);
+      std::remainder(fit(0) + slope * t + added_drift_ * t - added_moment_ + added_jump_, 2.0 * std::numbers::pi);
   reset();
   return mean;
 }
@@ -61,6 +62,7 @@ void MeanElementsFilter::impulse(const ImpulseEffect& effect, double t_s) {
   const double t = start_s_ ? t_s - *start_s_ : 0.0;
   added_drift_ += effect.drift_rad_s;
   added_moment_ += effect.drift_rad_s * t;
+  added_jump_ += effect.longitude_rad;
 }
 
 }  // namespace flatsat::station_keeping

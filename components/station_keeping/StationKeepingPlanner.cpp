@@ -102,12 +102,15 @@ StationKeepingPlan StationKeepingPlanner::step(const StationKeepingInputs& in) c
   std::vector<Firing> firings = firingsFor(in.failure, plan.season, std::atan2(in.sun_N_unit.y(), in.sun_N_unit.x()));
 
   const double lon_error = std::remainder(in.mean.longitude_rad - params_.station_longitude_rad, 2.0 * kPi);
-  plan.drift_target_rad_s = -lon_error / params_.longitude_return_s;
-  const Effect5 wanted = scaled(-in.mean.i, -in.mean.e, plan.drift_target_rad_s - in.mean.drift_rad_s, params_);
+  // The return drift before the firings' longitude jumps, which each
+  // firing's own effect below adds to.
+  const Effect5 wanted =
+      scaled(-in.mean.i, -in.mean.e, -lon_error / params_.longitude_return_s - in.mean.drift_rad_s, params_);
 
   const auto effectOf = [&](const Firing& f, double dv) {
     const ImpulseEffect e = impulseEffect(dv * forceDirection_orbital(f.thruster, params_.thrusters), f.ra_rad, v, n);
-    return std::pair{e, scaled(e.i, e.e, e.drift_rad_s, params_)};
+    // A radial firing's longitude jump changes the drift the return wants.
+    return std::pair{e, scaled(e.i, e.e, e.drift_rad_s + e.longitude_rad / params_.longitude_return_s, params_)};
   };
   std::vector<int> free;  // the firings the least squares sizes; the dump firings are given
   for (int j = 0; j < static_cast<int>(firings.size()); ++j) {
@@ -154,10 +157,12 @@ StationKeepingPlan StationKeepingPlanner::step(const StationKeepingInputs& in) c
     plan.i_after += e.i;
     plan.e_after += e.e;
     plan.drift_after_rad_s += e.drift_rad_s;
+    plan.longitude_jump_rad += e.longitude_rad;
     plan.dv_total_m_s += dv;
     plan.firings.push_back({firings[j].thruster, firings[j].ra_rad, dv, dv * params_.mass_kg / params_.thrust_N,
                             firings[j].job});
   }
+  plan.drift_target_rad_s = -(lon_error + plan.longitude_jump_rad) / params_.longitude_return_s;
   return plan;
 }
 

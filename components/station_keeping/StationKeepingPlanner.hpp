@@ -13,7 +13,7 @@ namespace flatsat::station_keeping {
 
 struct StationKeepingParams {
   double station_longitude_rad = 0.0;  ///< [rad] east of Greenwich, [−π, π]
-  double longitude_return_s = 432000.0;  ///< [s] the time constant of the drift that brings the longitude back, [1 d, 60 d]
+  double longitude_return_s = 259200.0;  ///< [s] the time constant of the drift that brings the longitude back, [1 d, 60 d]
   GeoThrusterParams thrusters;
   double thrust_N = 0.165;      ///< [N] per thruster, (0, 2]
   double mass_kg = 2000.0;      ///< [kg] (0, 1e5]
@@ -26,7 +26,7 @@ struct StationKeepingParams {
   /// [s] a drift error weighs as the longitude it makes in this time, [1 d, 60 d]:
   /// longer holds the longitude tighter at the cost of i and e (in the
   /// outer-pair failures, where one firing carries drift, e and some i).
-  double drift_horizon_s = 172328.0;
+  double drift_horizon_s = 345600.0;
 };
 
 /// Every problem with `params`, naming the field and its range; empty: valid.
@@ -57,7 +57,8 @@ struct StationKeepingPlan {
   Eigen::Vector2d i_after{0.0, 0.0};
   Eigen::Vector2d e_after{0.0, 0.0};
   double drift_after_rad_s = 0.0;
-  double drift_target_rad_s = 0.0;  ///< [rad/s] what brings the longitude back to the station
+  double drift_target_rad_s = 0.0;  ///< [rad/s] what brings the longitude (after the jumps) back to the station
+  double longitude_jump_rad = 0.0;  ///< [rad] how far the firings' radial parts move the mean longitude
   double dv_total_m_s = 0.0;
   Season season;
 };

@@ -88,6 +88,8 @@ TEST_CASE("S3 impulse effects: the linear changes of i, e and drift match the ex
     CHECK((after.i - before.i - linear.i).norm() < 2e-3 * scale);
     CHECK((after.e - before.e - linear.e).norm() < 2e-3 * scale);
     CHECK_THAT(after.drift_rad_s - before.drift_rad_s, WithinAbs(linear.drift_rad_s, 2e-3 * 3.0 * n * scale));
+    CHECK_THAT(std::remainder(after.longitude_rad - before.longitude_rad, 2.0 * std::numbers::pi),
+               WithinAbs(linear.longitude_rad, 2e-3 * 2.0 * scale));
   }
   // The seed's nominal inclination firing: the north row at RA 90° pushes the
   // inclination vector along −x, the south row at 270° the same way.
