@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "bus/Scenario.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -76,16 +77,54 @@ std::vector<BusFault> readBusFaults(ParamReader& top) {
 
 }  // namespace
 
-Scenario loadScenario(const std::string& path) {
+namespace {
+
+/// `over` laid over `base`: mappings key by key, anything else replaced.
+YAML::Node merged(const YAML::Node& base, const YAML::Node& over) {
+  if (!base.IsMap() || !over.IsMap()) return YAML::Clone(over);
+  YAML::Node out = YAML::Clone(base);
+  for (const auto& entry : over) {
+    const std::string key = entry.first.as<std::string>();
+    out[key] = out[key] ? merged(out[key], entry.second) : YAML::Clone(entry.second);
+  }
+  return out;
+}
+
+YAML::Node loadWithBases(const std::string& path, std::vector<std::string>& chain) {
   if (!std::filesystem::exists(path)) throw ScenarioError(path + ": no such file");
-  Scenario scenario;
-  scenario.file = path;
+  const std::string canonical = std::filesystem::weakly_canonical(path).string();
+  if (std::find(chain.begin(), chain.end(), canonical) != chain.end()) {
+    throw ScenarioError(path + ": base: the scenario is its own base (through " + chain.front() + ")");
+  }
+  chain.push_back(canonical);
+  YAML::Node root;
   try {
-    scenario.root = YAML::LoadFile(path);
+    root = YAML::LoadFile(path);
   } catch (const YAML::Exception& e) {
     throw ScenarioError(path + ":" + std::to_string(e.mark.line + 1) + ":" +
                         std::to_string(e.mark.column + 1) + ": not valid YAML: " + e.msg);
   }
+  if (!root.IsMap() || !root["base"]) return root;
+  if (!root["base"].IsScalar()) {
+    throw ScenarioError(path + ":" + std::to_string(root["base"].Mark().line + 1) + ": base: must be a file name");
+  }
+  const auto base_path = std::filesystem::path(path).parent_path() / root["base"].as<std::string>();
+  YAML::Node own = YAML::Clone(root);
+  own.remove("base");
+  return merged(loadWithBases(base_path.string(), chain), own);
+}
+
+}  // namespace
+
+YAML::Node loadScenarioYaml(const std::string& path) {
+  std::vector<std::string> chain;
+  return loadWithBases(path, chain);
+}
+
+Scenario loadScenario(const std::string& path) {
+  Scenario scenario;
+  scenario.file = path;
+  scenario.root = loadScenarioYaml(path);
   ConfigProblems problems;
   ParamReader top(scenario.root, path, "", problems);
   if (!scenario.root.IsMap()) throw ScenarioError(path + ": must be a YAML mapping");
@@ -108,8 +147,12 @@ Scenario loadScenario(const std::string& path) {
     top.problem("spacecraft_count", "must be in 1.." + std::to_string(kMaxSpacecraft));
   }
   top.read("step_s", scenario.step_s, "s");
-  if (!(scenario.step_s >= 1e-3 && scenario.step_s <= 10.0)) {
-    top.problem("step_s", "must be in [1 ms, 10 s]");
+  // Lockstep steps are simulated time only: a station-keeping year steps by
+  // the minute (seed S3). A paced step is a wall-clock tick of the rig.
+  if (!(scenario.step_s >= 1e-3 && scenario.step_s <= 600.0)) {
+    top.problem("step_s", "must be in [1 ms, 600 s]");
+  } else if (scenario.pacing == Pacing::kPaced && scenario.step_s > 10.0) {
+    top.problem("step_s", "must be at most 10 s in a paced run");
   }
   top.read("duration_s", scenario.duration_s, "s");
   top.read("duration_orbits", scenario.duration_orbits, "-");

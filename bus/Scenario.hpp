@@ -71,6 +71,13 @@ struct Scenario {
 inline const std::vector<std::string> kPlantSections = {"spacecraft", "orbit", "environment",
                                                         "initial"};
 
+/// The scenario file's YAML with its `base:` resolved: `base: other.yaml`
+/// (relative to the file) takes that scenario and lays this file's keys over
+/// it, mappings merged key by key, anything else replaced; bases may have
+/// bases. Keys that come from a base report the base's lines.
+/// @throws ScenarioError naming the file: missing, not YAML, a base loop.
+YAML::Node loadScenarioYaml(const std::string& path);
+
 /// Loads and checks the top level; throws ScenarioError listing every
 /// problem as "file:line:col: key: reason".
 Scenario loadScenario(const std::string& path);

@@ -14,6 +14,7 @@
 #include "msg/HealthPubSubTypes.h"
 #include "msg/ModesPubSubTypes.h"
 #include "msg/SensorsPubSubTypes.h"
+#include "msg/StationKeepingPubSubTypes.h"
 #include "msg/StepPubSubTypes.h"
 #include "msg/TruthPubSubTypes.h"
 
@@ -63,6 +64,8 @@ inline constexpr TopicDef<FlapCmd, FlapCmdPubSubType> kFlapCmd{
     "flatsat/flap_cmd", QosKind::kStepped, "unloading_controller"};
 inline constexpr TopicDef<ThrusterCmd, ThrusterCmdPubSubType> kThrusterCmd{
     "flatsat/thruster_cmd", QosKind::kStepped, "thruster_sequencer"};
+inline constexpr TopicDef<StationKeepingPlan, StationKeepingPlanPubSubType> kStationKeepingPlan{
+    "flatsat/station_keeping_plan", QosKind::kStepped, "station_keeping"};
 inline constexpr TopicDef<Health, HealthPubSubType> kHealth{
     "flatsat/health", QosKind::kState, ""};
 inline constexpr TopicDef<FaultCmd, FaultCmdPubSubType> kFaultCmd{
@@ -89,7 +92,7 @@ void forEachTopic(F&& f) {
   f(kFaultCmd); f(kFaultEvent); f(kFieldEstimate); f(kCoilRequest); f(kCoilWindow);
   f(kThrusterCmd);
   f(kUnloadingModeCmd); f(kParamCmd); f(kCommandAck);
-  f(kStarTracker); f(kFlapCmd); f(kBusDelivery);
+  f(kStarTracker); f(kFlapCmd); f(kBusDelivery); f(kStationKeepingPlan);
 }
 
 /// Whether `name` is a stepped topic of the registry (a bus fault's target).

@@ -9,6 +9,7 @@
 #include "components/magnetometer_device/MagnetometerDeviceNode.hpp"
 #include "components/recorder/RecorderNode.hpp"
 #include "components/star_tracker/StarTrackerNode.hpp"
+#include "components/station_keeping/StationKeepingNode.hpp"
 #include "components/sun_sensor/SunSensorNode.hpp"
 #include "components/thruster_sequencer/ThrusterSequencerNode.hpp"
 #include "components/unloading_controller/UnloadingControllerNode.hpp"
@@ -74,6 +75,7 @@ const std::vector<ComponentKind>& componentKinds() {
       kind<thruster_sequencer::ThrusterSequencerNode>("thruster_sequencer",
                                                       thruster_sequencer::readParams),
       kind<star_tracker::StarTrackerNode>("star_tracker", star_tracker::readParams),
+      kind<station_keeping::StationKeepingNode>("station_keeping", station_keeping::readParams),
   };
   return kinds;
 }

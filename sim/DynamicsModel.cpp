@@ -7,6 +7,7 @@
 
 #include "sim/Constants.hpp"
 #include "sim/Disturbances.hpp"
+#include "sim/Frames.hpp"
 #include "sim/Geodetic.hpp"
 #include "sim/SunEphemeris.hpp"
 
@@ -61,9 +62,14 @@ DynamicsModel::DynamicsModel(const DynamicsParams& params)
 
 void DynamicsModel::reset() {
   t_ = 0;
+  truth_ = Truth{};
   state_ = body_.makeState(params_.q0_NB, params_.w0_NB_B_rad_s, params_.wheel_speed0_rad_s);
   orbit_.reset();
   env_ = environmentAt(0.0);
+  if (params_.attitude_held) {
+    const RigidBodyState held = heldState(env_.orbit, Eigen::Vector3d::Zero());
+    state_ = body_.makeState(held.q_NB, held.w_NB_B, params_.wheel_speed0_rad_s);
+  }
   setFlaps(Eigen::Vector4d::Zero());
   updateTruth(Applied{}, 0.0);
 }
@@ -90,24 +96,42 @@ void DynamicsModel::step(const ActuatorCommands& cmd, SimTime t_next) {
     };
   };
   const Eigen::Quaterniond q_start = state_.q_NB;
-  // A quiet part switches the coils off: the step is integrated in two pieces so
-  // that no integrator stage straddles the switch.
-  const double on_s = applied.dipole_on_fraction * dt_s;
-  state_ = body_.propagate(state_, t0_s, on_s, params_.substeps, applied.wheel_torque_Nm,
-                           torque_with(applied.dipole_B_Am2));
-  if (on_s < dt_s) {
-    state_ = body_.propagate(state_, t0_s + on_s, dt_s - on_s, params_.substeps, applied.wheel_torque_Nm,
-                             torque_with(Eigen::Vector3d::Zero()));
+  // Ideal attitude control: the external torques of the step's mid-point go
+  // into the total momentum, which the wheels hold once the body is back on
+  // its frame (the attitude a step of RK4 would take needs a controller's
+  // bandwidth far above 1/step at S3's minute-long steps).
+  Eigen::Vector3d H_held_N_Nms = Eigen::Vector3d::Zero();
+  if (params_.attitude_held) {
+    const Eigen::Vector3d tau_B = torque_with(applied.dipole_B_Am2)(t0_s + 0.5 * dt_s, state_);
+    H_held_N_Nms = body_.totalMomentum_N_Nms(state_) + dt_s * (state_.q_NB * tau_B);
+  } else {
+    // A quiet part switches the coils off: the step is integrated in two pieces so
+    // that no integrator stage straddles the switch.
+    const double on_s = applied.dipole_on_fraction * dt_s;
+    state_ = body_.propagate(state_, t0_s, on_s, params_.substeps, applied.wheel_torque_Nm,
+                             torque_with(applied.dipole_B_Am2));
+    if (on_s < dt_s) {
+      state_ = body_.propagate(state_, t0_s + on_s, dt_s - on_s, params_.substeps, applied.wheel_torque_Nm,
+                               torque_with(Eigen::Vector3d::Zero()));
+    }
   }
   t_ = t_next;
   env_ = next;
   const Eigen::Vector3d& f_B = applied.thrusters.force_B_N;
   if (params_.orbit_track.propagator == OrbitPropagation::kNumerical && !f_B.isZero(0.0)) {
-    const Eigen::Vector3d a_N = (q_start * f_B + state_.q_NB * f_B) / (2.0 * params_.orbit_track.forces.mass_kg);
+    const Eigen::Quaterniond q_end = params_.attitude_held ? heldState(env_.orbit, H_held_N_Nms).q_NB : state_.q_NB;
+    const Eigen::Vector3d a_N = (q_start * f_B + q_end * f_B) / (2.0 * params_.orbit_track.forces.mass_kg);
     orbit_.kick(t1_s, 0.5 * dt_s * dt_s * a_N, dt_s * a_N);
     env_ = environmentAt(t1_s);
   }
+  if (params_.attitude_held) state_ = heldState(env_.orbit, H_held_N_Nms);
   updateTruth(applied, dt_s / params_.substeps);
+}
+
+RigidBodyState DynamicsModel::heldState(const KeplerOrbit::State& orbit, const Eigen::Vector3d& H_N_Nms) const {
+  const Eigen::Matrix3d R_NB = R_N_EastNorthZenith(orbit.r_N_m, orbit.v_N_m_s);
+  const Eigen::Vector3d w_N = orbit.r_N_m.cross(orbit.v_N_m_s) / orbit.r_N_m.squaredNorm();
+  return body_.heldAt(Eigen::Quaterniond(R_NB), R_NB.transpose() * w_N, H_N_Nms);
 }
 
 void DynamicsModel::setFlaps(const Eigen::Vector4d& flap_angle_rad) {
@@ -219,6 +243,12 @@ void DynamicsModel::updateTruth(const Applied& applied, double substep_s) {
   truth.flap_angle_applied_rad = applied.flap_angle_rad;
   truth.f_thruster_B_N = applied.thrusters.force_B_N;
   truth.tau_thruster_B_Nm = applied.thrusters.torque_B_Nm;
+  // Totals since t = 0, so that a recording decimated in time still accounts
+  // for every burn (seed S3's ΔV per year and firings per thruster).
+  for (int i = 0; i < kMaxThrusters; ++i) {
+    if (applied.thrusters.impulse_Ns(i) > 0.0 && truth.thruster_impulse_Ns(i) == 0.0) ++truth.thruster_burns[i];
+  }
+  truth.thruster_impulse_total_Ns += applied.thrusters.impulse_Ns;
   truth.thruster_impulse_Ns = applied.thrusters.impulse_Ns;
   truth.thruster_gimbal_applied_rad = applied.thrusters.gimbal_rad;
 }

@@ -98,6 +98,9 @@ class DynamicsModel {
 
   /// Advances the orbit to t_s (never back).
   Environment environmentAt(double t_s);
+  /// attitude_held: the body on the east–north–zenith frame of `orbit`, the
+  /// wheels holding the rest of H_N_Nms.
+  RigidBodyState heldState(const KeplerOrbit::State& orbit, const Eigen::Vector3d& H_N_Nms) const;
   /// The chord from a (s = 0) to b (s = 1).
   static Environment interpolated(const Environment& a, const Environment& b, double s);
   Torques torquesAt(const Environment& env, const Eigen::Quaterniond& q_NB, const Eigen::Vector3d& dipole_B_Am2) const;

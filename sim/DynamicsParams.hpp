@@ -51,6 +51,11 @@ struct DynamicsParams {
   Eigen::Vector3d disturbance_torque_B_Nm = Eigen::Vector3d::Zero();  // [N m] constant residual torque
   bool gravity_gradient = true;                                       // apply the gravity-gradient torque
   int substeps = 4;                                                   // [-] RK4 substeps per step, ≥ 1
+  /// Ideal attitude control: the body axes held on the east–north–zenith frame
+  /// (R_N_EastNorthZenith), turning with the orbit; the external torques go
+  /// into the wheels, total momentum conserved. For station-keeping runs with
+  /// steps far longer than an attitude loop's (seed S3).
+  bool attitude_held = false;
   Eigen::Quaterniond q0_NB = Eigen::Quaterniond::Identity();          // initial attitude, unit
   Eigen::Vector3d w0_NB_B_rad_s = Eigen::Vector3d::Zero();            // [rad/s] initial body rate
   Eigen::Vector4d wheel_speed0_rad_s = Eigen::Vector4d::Zero();       // [rad/s] initial speeds relative to body

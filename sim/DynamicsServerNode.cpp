@@ -48,6 +48,8 @@ msg::TruthState toMessage(const Truth& truth, int wheel_count, const bus::StepCo
   put(m.f_thruster_body_N(), truth.f_thruster_B_N);
   put(m.tau_thruster_body_Nm(), truth.tau_thruster_B_Nm);
   put(m.dipole_at_sample_body_Am2(), truth.dipole_at_t_B_Am2);
+  put(m.thruster_impulse_total_Ns(), truth.thruster_impulse_total_Ns);
+  m.thruster_burns(truth.thruster_burns);
   return m;
 }
 
@@ -112,6 +114,7 @@ void DynamicsServerNode::advance(const bus::StepContext& ctx) {
     if (!thruster_cmd_fired_ || thrusters.header().step() > *thruster_cmd_fired_) {
       thruster_cmd_fired_ = thrusters.header().step();
       cmd.thruster_on_time_s = Eigen::Map<const ThrusterVector>(thrusters.on_time_s().data());
+      cmd.thruster_gimbal_rad = Eigen::Map<const ThrusterGimbals>(thrusters.gimbal_rad().data());
     }
   }
   fault_port_.take(ctx, [this](const ActuatorFault& fault) { return faults_.add(fault); });

@@ -291,6 +291,13 @@ DynamicsServerParams readDynamicsServerParams(const bus::Scenario& scenario,
   const bool plant_read = problems.list().size() == problems_before;
   auto own = scenario.componentParams(name, problems);
   own.read("substeps", p.substeps);
+  std::string attitude = "free";
+  own.read("attitude", attitude);
+  if (attitude == "held_east_north_zenith") {
+    p.attitude_held = true;
+  } else if (attitude != "free") {
+    own.problem("attitude", "'" + attitude + "' is neither free nor held_east_north_zenith");
+  }
   params.faults = readActuatorFaults(own, p);
   // The plant's sections report their own faults at their keys; validate() adds
   // only what they cannot see (the server's own keys, or anything once they are clean).

@@ -42,6 +42,13 @@ Eigen::Matrix3d R_N_RSW(const Eigen::Vector3d& r_N_m, const Eigen::Vector3d& v_N
   return r;
 }
 
+Eigen::Matrix3d R_N_EastNorthZenith(const Eigen::Vector3d& r_N_m, const Eigen::Vector3d& v_N_m_s) {
+  const Eigen::Matrix3d rsw = R_N_RSW(r_N_m, v_N_m_s);
+  Eigen::Matrix3d r;
+  r << rsw.col(1), rsw.col(2), rsw.col(0);
+  return r;
+}
+
 Eigen::Matrix3d R_N_LVLH(const Eigen::Vector3d& r_N_m, const Eigen::Vector3d& v_N_m_s) {
   const Eigen::Vector3d nadir = -r_N_m.normalized();
   const Eigen::Vector3d negative_normal = -r_N_m.cross(v_N_m_s).normalized();

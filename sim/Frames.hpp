@@ -27,6 +27,12 @@ Eigen::Matrix3d R_N_RSW(const Eigen::Vector3d& r_N_m, const Eigen::Vector3d& v_N
 /// The same axes as RSW, relabelled: x_LVLH = S, y_LVLH = −W, z_LVLH = −R.
 Eigen::Matrix3d R_N_LVLH(const Eigen::Vector3d& r_N_m, const Eigen::Vector3d& v_N_m_s);
 
+/// Orbital frame of seed S3's geostationary spacecraft (JP3299143; the thrusters'
+/// frame of components/station_keeping/GeoThrusters.hpp): x east (along-track S),
+/// y north (orbit normal W), z zenith (R): RSW relabelled. The frame turns with the
+/// orbit, at (r × v)/|r|².
+Eigen::Matrix3d R_N_EastNorthZenith(const Eigen::Vector3d& r_N_m, const Eigen::Vector3d& v_N_m_s);
+
 /// Orbital frame of seed S2 (CNES FR2718105, Fig. 2; sim/Flaps.hpp): roll x along the
 /// track against the motion, yaw z away from the Earth's centre, pitch y = z × x
 /// (negative orbit normal): LVLH turned by 180° about its y axis. The frame turns with

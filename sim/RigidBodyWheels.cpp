@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/QR>
 
 #include "sim/Attitude.hpp"
 #include "sim/Format.hpp"
@@ -123,6 +124,16 @@ Eigen::Vector3d RigidBodyWheels::wheelMomentum_B_Nms(const RigidBodyState& x) co
 
 Eigen::Vector3d RigidBodyWheels::totalMomentum_N_Nms(const RigidBodyState& x) const {
   return x.q_NB * (J_spinless_ * x.w_NB_B + A_ * x.h_wheels_Nms);
+}
+
+RigidBodyState RigidBodyWheels::heldAt(const Eigen::Quaterniond& q_NB, const Eigen::Vector3d& w_NB_B,
+                                       const Eigen::Vector3d& H_N_Nms) const {
+  RigidBodyState x;
+  x.q_NB = q_NB.normalized();
+  x.w_NB_B = w_NB_B;
+  const Eigen::Vector3d in_wheels_B = x.q_NB.conjugate() * H_N_Nms - J_spinless_ * w_NB_B;
+  x.h_wheels_Nms = A_.completeOrthogonalDecomposition().solve(in_wheels_B);
+  return x;
 }
 
 double RigidBodyWheels::kineticEnergy_J(const RigidBodyState& x) const {

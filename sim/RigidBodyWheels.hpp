@@ -74,6 +74,12 @@ class RigidBodyWheels {
   Eigen::Vector3d wheelMomentum_B_Nms(const RigidBodyState& x) const;
   /// [N m s] Total angular momentum of body and wheels in the inertial frame.
   Eigen::Vector3d totalMomentum_N_Nms(const RigidBodyState& x) const;
+  /// The state with attitude q_NB and rate w_NB_B set and the wheels holding
+  /// the rest of the total momentum H_N_Nms [N m s]: A h = R_BN H_N − J'ω, in
+  /// the least-squares sense when the wheels do not span three axes (what an
+  /// ideal attitude controller leaves them with).
+  RigidBodyState heldAt(const Eigen::Quaterniond& q_NB, const Eigen::Vector3d& w_NB_B,
+                        const Eigen::Vector3d& H_N_Nms) const;
   /// [J] ½ωᵀJ'ω + Σ h_i²/(2 I_w).
   double kineticEnergy_J(const RigidBodyState& x) const;
 

@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: Apache-2.0
 #pragma once
 
+#include <array>
+#include <cstdint>
+
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
@@ -58,6 +61,8 @@ struct Truth {
   Eigen::Vector3d f_thruster_B_N = Eigen::Vector3d::Zero();             // [N] mean over the step
   Eigen::Vector3d tau_thruster_B_Nm = Eigen::Vector3d::Zero();          // [N m] mean over the step
   ThrusterVector thruster_impulse_Ns = ThrusterVector::Zero();          // [N s] delivered per thruster
+  ThrusterVector thruster_impulse_total_Ns = ThrusterVector::Zero();    // [N s] delivered per thruster since t = 0
+  std::array<std::uint32_t, kMaxThrusters> thruster_burns{};            // [-] burns begun per thruster since t = 0
   ThrusterGimbals thruster_gimbal_applied_rad = ThrusterGimbals::Zero();  // [rad] after the limits
 };
 

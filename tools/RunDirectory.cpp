@@ -11,13 +11,15 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "bus/Scenario.hpp"
+
 namespace flatsat::tools {
 
 namespace fs = std::filesystem;
 
 std::string writeRunScenario(const std::string& scenario_file, const std::string& run_dir,
                              const std::vector<std::string>& overrides) {
-  YAML::Node root = YAML::LoadFile(scenario_file);
+  YAML::Node root = bus::loadScenarioYaml(scenario_file);
   for (const auto& assignment : overrides) {
     const auto eq = assignment.find('=');
     if (eq == std::string::npos || eq == 0) {

@@ -18,6 +18,7 @@
 #include "tools/SummaryS0.hpp"
 #include "tools/SummaryMagnetic.hpp"
 #include "tools/SummaryS2.hpp"
+#include "tools/SummaryS3.hpp"
 #include "sim/Frames.hpp"
 #include "tools/SummaryEstimator.hpp"
 
@@ -212,6 +213,7 @@ nlohmann::ordered_json summarize(const bus::Scenario& scenario, const std::strin
   addS0Metrics(s, scenario, recording);
   summarizeMagnetic(scenario, recording, s);
   summarizeS2(scenario, recording, s);
+  summarizeS3(scenario, recording, s);
   summarizeEstimator(scenario, recording, s);
   s["recording"] = recording_path;
   s["recording_sha256"] = recording.digest({std::string(bus::topics::kHealth.name)});

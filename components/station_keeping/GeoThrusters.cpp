@@ -3,6 +3,8 @@
 
 #include <cmath>
 
+#include "sim/Frames.hpp"
+
 namespace flatsat::station_keeping {
 
 GeoThruster partnerOf(GeoThruster thruster) {
@@ -73,11 +75,7 @@ Eigen::Vector3d forceDirection_orbital(GeoThruster thruster, const GeoThrusterPa
 }
 
 Eigen::Matrix3d R_N_orbital(const Eigen::Vector3d& r_N_m, const Eigen::Vector3d& v_N_m_s) {
-  const Eigen::Vector3d zenith = r_N_m.normalized();
-  const Eigen::Vector3d north = r_N_m.cross(v_N_m_s).normalized();
-  Eigen::Matrix3d R;
-  R << north.cross(zenith), north, zenith;
-  return R;
+  return sim::R_N_EastNorthZenith(r_N_m, v_N_m_s);
 }
 
 }  // namespace flatsat::station_keeping

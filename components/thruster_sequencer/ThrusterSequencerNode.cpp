@@ -34,6 +34,17 @@ msg::ThrusterCmd toMessage(const ThrusterMomentumDumpingOutput& out) {
   return m;
 }
 
+/// The plan's firings on the plant's thrusters, the seed's six in numbering
+/// order: thruster 20 + 2 i is index i.
+std::vector<ScheduledFiring> scheduled(const msg::StationKeepingPlan& plan) {
+  std::vector<ScheduledFiring> out;
+  const std::size_t n = std::min<std::size_t>(plan.firing_count(), plan.thruster().size());
+  for (std::size_t k = 0; k < n; ++k) {
+    out.push_back({(plan.thruster()[k] - 20) / 2, plan.ra_rad()[k], plan.duration_s()[k]});
+  }
+  return out;
+}
+
 void readAngleOnly(bus::ParamReader& r, AngleOnlySequencerParams& p) {
   r.read("axis_body", p.axis_B, "-");
   r.read("target_rad", p.cycle.target_rad, "rad");
@@ -62,14 +73,20 @@ ThrusterSequencerNode::ThrusterSequencerNode(bus::Bus& bus, bus::NodeOptions opt
     sun_ = &addInput(bus::topics::kSunSensor);
     sequencer_.emplace(params.angle_only);
     thruster_count_ = params.angle_only.thrusters.size();
-  } else {
+  } else if (params.mode == ThrusterSequencerParams::Mode::kMomentumDumping) {
     tach_ = &addInput(bus::topics::kWheelTach);
     dumping_.emplace(params.dumping);
     thruster_count_ = params.dumping.thrusters.size();
+  } else {
+    plan_ = &addInput(bus::topics::kStationKeepingPlan);
+    truth_ = &addInput(bus::topics::kTruth);
+    firings_.emplace(params.station_keeping);
+    thruster_count_ = static_cast<std::size_t>(params.station_keeping.thruster_count);
   }
 }
 
 nlohmann::json ThrusterSequencerNode::saveState() const {
+  if (firings_) return nlohmann::json::object();
   if (dumping_) {
     const auto s = dumping_->state();
     return {{"dumping", s.dumping},
@@ -88,6 +105,7 @@ nlohmann::json ThrusterSequencerNode::saveState() const {
 }
 
 void ThrusterSequencerNode::restoreState(const nlohmann::json& j) {
+  if (firings_) return;
   if (dumping_) {
     ThrusterMomentumDumpingState s;
     s.dumping = j.at("dumping").get<bool>();
@@ -118,10 +136,14 @@ void ThrusterSequencerNode::step(const bus::StepContext& ctx) {
     const auto sun = sun_->at(ctx.step);
     message = toMessage(sequencer_->step({bus::vec3(sun.sun_body_unit()), sun.valid()}, ctx.sim_time_ns),
                         sequencer_->pulseDeltaRate_rad_s(1), sun.valid());
-  } else {
+  } else if (dumping_) {
     const auto tach = tach_->at(ctx.step);
     if (tach.valid()) last_speed_rad_s_ = bus::vec4(tach.wheel_speed_rad_s());
     message = toMessage(dumping_->step(last_speed_rad_s_, ctx.sim_time_ns));
+  } else {
+    if (const auto plan = plan_->at(ctx.step); plan.plan_count() > 0) firings_->plan(plan.plan_step(), scheduled(plan));
+    const Eigen::Vector3d r = bus::vec3(truth_->at(ctx.step).r_inertial_m());
+    bus::put(message.on_time_s(), firings_->step(std::atan2(r.y(), r.x())));
   }
   message.thruster_count(static_cast<std::uint32_t>(thruster_count_));
   message.header(bus::makeHeader(ctx, name()));
@@ -160,8 +182,15 @@ ThrusterSequencerParams readParams(const bus::Scenario& scenario, const bus::Nod
     }
     readAngleOnly(r, a);
     r.problems(a.validate());
+  } else if (mode == "station_keeping") {
+    p.mode = ThrusterSequencerParams::Mode::kStationKeeping;
+    auto& k = p.station_keeping;
+    k.step_s = step_s;
+    k.thruster_count = static_cast<int>(plant.thrusters.size());
+    if (!scenario.hasComponent("station_keeping")) r.problem("mode", "station_keeping needs a station_keeping planner in the rig");
+    r.problems(k.validate());
   } else {
-    r.problem("mode", "'" + mode + "' is neither angle_only nor momentum_dumping");
+    r.problem("mode", "'" + mode + "' is none of angle_only, momentum_dumping, station_keeping");
   }
   r.finish();
   return p;

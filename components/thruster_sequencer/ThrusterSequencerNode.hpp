@@ -5,21 +5,26 @@
 #include "bus/Component.hpp"
 #include "bus/NodeMain.hpp"
 #include "components/thruster_sequencer/AngleOnlySequencer.hpp"
+#include "components/thruster_sequencer/StationKeepingFirings.hpp"
 #include "components/thruster_sequencer/ThrusterMomentumDumping.hpp"
 
 namespace flatsat::thruster_sequencer {
 
 /// What the sequencer does; each mode reads its own input only.
 struct ThrusterSequencerParams {
-  enum class Mode { kAngleOnly, kMomentumDumping };
-  Mode mode = Mode::kAngleOnly;               // [-] `mode: angle_only | momentum_dumping`
+  enum class Mode { kAngleOnly, kMomentumDumping, kStationKeeping };
+  Mode mode = Mode::kAngleOnly;               // [-] `mode: angle_only | momentum_dumping | station_keeping`
   AngleOnlySequencerParams angle_only;        // [-] used in kAngleOnly (see there)
   ThrusterMomentumDumpingParams dumping;      // [-] used in kMomentumDumping (see there)
+  StationKeepingFiringsParams station_keeping;  // [-] used in kStationKeeping (see there)
 };
 
 /// Thruster on-times on the bus. angle_only (seed S1): the Sun sensor's reading is the only
 /// input; no rate of any kind (gyro, estimate) is read, the angle-only law needs none.
 /// momentum_dumping: the wheel tachometers only; the attitude controller holds the attitude.
+/// station_keeping (seed S3): flatsat/station_keeping_plan's firings as finite burns, at
+/// the right ascension of flatsat/truth's position (standing in for orbit determination);
+/// the plant's thrusters are the seed's six in numbering order (20, 22, ... 30).
 class ThrusterSequencerNode final : public bus::Component {
  public:
   ThrusterSequencerNode(bus::Bus& bus, bus::NodeOptions options, const ThrusterSequencerParams& params);
@@ -28,16 +33,20 @@ class ThrusterSequencerNode final : public bus::Component {
   void step(const bus::StepContext& ctx) override;
   /// The limit cycle's phase and counts (claim 4's n) or the dump under way with the
   /// last valid wheel speeds, and the on-times still owed: a restarted sequencer goes
-  /// on with the correction it was in.
+  /// on with the correction it was in. Station keeping keeps nothing: a restarted
+  /// sequencer takes the plan in force anew (a burn under way is cut short).
   nlohmann::json saveState() const override;
   void restoreState(const nlohmann::json& state) override;
 
   bus::WriterOf<bus::topics::kThrusterCmd>& command_ = addOutput(bus::topics::kThrusterCmd);
   bus::InputOf<bus::topics::kSunSensor>* sun_ = nullptr;   // angle_only
   bus::InputOf<bus::topics::kWheelTach>* tach_ = nullptr;  // momentum_dumping
+  bus::InputOf<bus::topics::kStationKeepingPlan>* plan_ = nullptr;  // station_keeping
+  bus::InputOf<bus::topics::kTruth>* truth_ = nullptr;              // station_keeping
   std::size_t thruster_count_;
   std::optional<AngleOnlySequencer> sequencer_;
   std::optional<ThrusterMomentumDumping> dumping_;
+  std::optional<StationKeepingFirings> firings_;
   Eigen::Vector4d last_speed_rad_s_ = Eigen::Vector4d::Zero();  // rides through tachometer dropouts
 };
 

@@ -11,15 +11,14 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <map>
 #include <set>
-#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "tests/support/Csv.hpp"
 #include "tests/support/Rig.hpp"
 #include "tests/support/Run.hpp"
 
@@ -32,33 +31,6 @@ const std::string kDefault = std::string(FLATSAT_SCENARIO_DIR) + "/default.yaml"
 // 300 s with the pointing metrics from 100 s on, so that they see the noise.
 const std::string kShort = " --set duration_orbits=null --set duration_s=300 --set metrics.acquisition_s=100";
 
-struct Csv {
-  std::vector<std::string> header;
-  std::vector<std::map<std::string, std::string>> rows;
-};
-
-Csv readCsv(const fs::path& file) {
-  Csv csv;
-  std::ifstream in(file);
-  auto split = [](const std::string& line) {
-    std::vector<std::string> cells;
-    std::stringstream stream(line);
-    for (std::string cell; std::getline(stream, cell, ',');) cells.push_back(cell);
-    if (!line.empty() && line.back() == ',') cells.emplace_back();
-    return cells;
-  };
-  std::string line;
-  std::getline(in, line);
-  csv.header = split(line);
-  while (std::getline(in, line)) {
-    const auto cells = split(line);
-    REQUIRE(cells.size() == csv.header.size());
-    std::map<std::string, std::string> row;
-    for (std::size_t i = 0; i < cells.size(); ++i) row[csv.header[i]] = cells[i];
-    csv.rows.push_back(row);
-  }
-  return csv;
-}
 
 /// The statistics mc_summary.json promises, computed here from the CSV's column:
 /// sample standard deviation, nearest-rank quantiles.
@@ -109,7 +81,7 @@ TEST_CASE("flatsat mc runs seeded composed runs in parallel and gathers them int
   REQUIRE(mc.exit_code == 0);
   CHECK(mc.output.find("mc: 6/6 runs done, 0 failed") != std::string::npos);
 
-  const Csv csv = readCsv(fs::path(out) / "mc.csv");
+  const test::Csv csv = test::readCsv(fs::path(out) / "mc.csv");
   REQUIRE(csv.rows.size() == 6);
   std::set<std::string> seeds;
   std::set<std::string> digests;
@@ -157,7 +129,7 @@ TEST_CASE("flatsat mc runs seeded composed runs in parallel and gathers them int
                                       again + kShort);
   INFO(rerun.output);
   REQUIRE(rerun.exit_code == 0);
-  const Csv one = readCsv(fs::path(again) / "mc.csv");
+  const test::Csv one = test::readCsv(fs::path(again) / "mc.csv");
   REQUIRE(one.rows.size() == 1);
   CHECK(one.rows[0].at("seed") == "7003");
   CHECK(one.rows[0].at("recording_sha256") == csv.rows[3].at("recording_sha256"));
@@ -206,7 +178,7 @@ TEST_CASE("a run that dies is reported with its log and exit status, and the oth
         std::string::npos);
   CHECK(fs::exists(fs::path(out) / "run-0.log"));
 
-  const Csv csv = readCsv(fs::path(out) / "mc.csv");
+  const test::Csv csv = test::readCsv(fs::path(out) / "mc.csv");
   REQUIRE(csv.rows.size() == 3);
   CHECK(csv.rows[0].at("exit_code") == "137");
   CHECK(csv.rows[0].at("steps").empty());
