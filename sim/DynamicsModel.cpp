@@ -102,8 +102,11 @@ void DynamicsModel::step(const ActuatorCommands& cmd, SimTime t_next) {
   // bandwidth far above 1/step at S3's minute-long steps).
   Eigen::Vector3d H_held_N_Nms = Eigen::Vector3d::Zero();
   if (params_.attitude_held) {
-    const Eigen::Vector3d tau_B = torque_with(applied.dipole_B_Am2)(t0_s + 0.5 * dt_s, state_);
-    H_held_N_Nms = body_.totalMomentum_N_Nms(state_) + dt_s * (state_.q_NB * tau_B);
+    RigidBodyState mid = state_;  // the frame half a step on, at the orbit's rate (midpoint rule)
+    const Eigen::Vector3d& w = state_.w_NB_B;
+    if (w.norm() > 0.0) mid.q_NB = state_.q_NB * Eigen::Quaterniond(Eigen::AngleAxisd(0.5 * dt_s * w.norm(), w.normalized()));
+    const Eigen::Vector3d tau_B = torque_with(applied.dipole_B_Am2)(t0_s + 0.5 * dt_s, mid);
+    H_held_N_Nms = body_.totalMomentum_N_Nms(state_) + dt_s * (mid.q_NB * tau_B);
   } else {
     // A quiet part switches the coils off: the step is integrated in two pieces so
     // that no integrator stage straddles the switch.
