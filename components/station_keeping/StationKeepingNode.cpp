@@ -98,6 +98,7 @@ void StationKeepingNode::step(const bus::StepContext& ctx) {
     in.mean = *mean;
     in.failure = failure;
     in.sun_N_unit = sim::sunPosition_N_m(jd).normalized();
+    in.dump_dv_m_s = params_.dump_dv_m_s;
     plan_ = planner_.step(in);
     mean_ = *mean;
     ++plan_count_;
@@ -135,6 +136,8 @@ StationKeepingNodeParams readParams(const bus::Scenario& scenario, const bus::No
   r.read("cant_rad", k.thrusters.cant_rad, "rad");
   r.read("slew_rad", k.thrusters.slew_rad, "rad");
   r.read("mean_elements_window_s", p.mean_elements.window_s, "s");
+  r.read("dump_dv_m_s", p.dump_dv_m_s, "m/s");
+  if (!(p.dump_dv_m_s >= 0.0 && p.dump_dv_m_s <= 1.0)) r.problem("dump_dv_m_s", "outside [0, 1] m/s");
   k.mass_kg = plant.orbit_track.forces.mass_kg;
   if (plant.orbit_track.propagator != sim::OrbitPropagation::kNumerical) {
     r.problem("", "needs orbit.propagator: numerical (the thrust must move the orbit)");

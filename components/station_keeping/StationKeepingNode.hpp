@@ -25,6 +25,7 @@ struct StationKeepingNodeParams {
   MeanElementsParams mean_elements;
   double jd_epoch = 0.0;          ///< [d] Julian date (UTC) of the scenario's t = 0
   double step_s = 1.0;            ///< [s] the planner's step: the span of the truth's mean thrust
+  double dump_dv_m_s = 0.02;      ///< [m/s] each firing Table I gives to MD alone (nominal: 22 and 28), [0, 1]
   std::vector<ThrusterFailure> failures;  ///< known at load (components.dynamics_server.faults)
 };
 

@@ -53,8 +53,9 @@ void StationKeepingFirings::plan(std::uint64_t plan_step, const std::vector<Sche
   }
 }
 
-sim::ThrusterVector StationKeepingFirings::step(double ra_rad) {
-  sim::ThrusterVector on = sim::ThrusterVector::Zero();
+StationKeepingFiringsOutput StationKeepingFirings::step(double ra_rad) {
+  StationKeepingFiringsOutput out;
+  sim::ThrusterVector& on = out.on_time_s;
   for (auto& p : pending_) {
     if (!p.burning) {
       const double half_arc = 0.5 * p.firing.duration_s * params_.ra_rate_rad_s;
@@ -65,10 +66,11 @@ sim::ThrusterVector StationKeepingFirings::step(double ra_rad) {
     if (!p.burning) continue;
     const double on_s = std::min(p.remaining_s, params_.step_s);
     on(p.firing.thruster) = std::min(params_.step_s, on(p.firing.thruster) + on_s);
+    if (p.firing.dumps) out.dumping(p.firing.thruster) = 1.0;
     p.remaining_s -= on_s;
   }
   std::erase_if(pending_, [](const Pending& p) { return p.remaining_s <= 0.0; });
-  return on;
+  return out;
 }
 
 }  // namespace flatsat::thruster_sequencer

@@ -22,6 +22,13 @@ struct ScheduledFiring {
   int thruster = 0;
   double ra_rad = 0.0;      ///< [rad]
   double duration_s = 0.0;  ///< [s] ≥ 0
+  bool dumps = false;       ///< Table I gives it momentum dumping (MD): its gimbal may turn
+};
+
+/// What the firings ask of the thrusters over one step.
+struct StationKeepingFiringsOutput {
+  sim::ThrusterVector on_time_s = sim::ThrusterVector::Zero();  ///< [s]
+  sim::ThrusterVector dumping = sim::ThrusterVector::Zero();    ///< [-] 1: a dump firing is burning on it
 };
 
 /// Flies seed S3's plans as finite burns: each firing starts when the
@@ -38,8 +45,8 @@ class StationKeepingFirings {
   void reset();
   /// The plan made at step `plan_step`: taken once (the same plan again is ignored).
   void plan(std::uint64_t plan_step, const std::vector<ScheduledFiring>& firings);
-  /// [s] On-time of each thruster over the step starting at right ascension ra_rad.
-  sim::ThrusterVector step(double ra_rad);
+  /// The thrusters' on-times over the step starting at right ascension ra_rad.
+  StationKeepingFiringsOutput step(double ra_rad);
 
  private:
   struct Pending {

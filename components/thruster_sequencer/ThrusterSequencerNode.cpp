@@ -40,7 +40,9 @@ std::vector<ScheduledFiring> scheduled(const msg::StationKeepingPlan& plan) {
   std::vector<ScheduledFiring> out;
   const std::size_t n = std::min<std::size_t>(plan.firing_count(), plan.thruster().size());
   for (std::size_t k = 0; k < n; ++k) {
-    out.push_back({(plan.thruster()[k] - 20) / 2, plan.ra_rad()[k], plan.duration_s()[k]});
+    // Table I's jobs 1 (MD) and 2 (i and MD) dump momentum.
+    const bool dumps = plan.job()[k] == 1 || plan.job()[k] == 2;
+    out.push_back({(plan.thruster()[k] - 20) / 2, plan.ra_rad()[k], plan.duration_s()[k], dumps});
   }
   return out;
 }
@@ -81,6 +83,11 @@ ThrusterSequencerNode::ThrusterSequencerNode(bus::Bus& bus, bus::NodeOptions opt
     plan_ = &addInput(bus::topics::kStationKeepingPlan);
     truth_ = &addInput(bus::topics::kTruth);
     firings_.emplace(params.station_keeping);
+    step_s_ = params.station_keeping.step_s;
+    if (params.gimbal_dumping) {
+      tach_ = &addInput(bus::topics::kWheelTach);
+      gimbal_dumping_.emplace(*params.gimbal_dumping);
+    }
     thruster_count_ = static_cast<std::size_t>(params.station_keeping.thruster_count);
   }
 }
@@ -143,7 +150,16 @@ void ThrusterSequencerNode::step(const bus::StepContext& ctx) {
   } else {
     if (const auto plan = plan_->at(ctx.step); plan.plan_count() > 0) firings_->plan(plan.plan_step(), scheduled(plan));
     const Eigen::Vector3d r = bus::vec3(truth_->at(ctx.step).r_inertial_m());
-    bus::put(message.on_time_s(), firings_->step(std::atan2(r.y(), r.x())));
+    const StationKeepingFiringsOutput out = firings_->step(std::atan2(r.y(), r.x()));
+    bus::put(message.on_time_s(), out.on_time_s);
+    if (gimbal_dumping_) {
+      const auto tach = tach_->at(ctx.step);
+      if (tach.valid()) last_speed_rad_s_ = bus::vec4(tach.wheel_speed_rad_s());
+      const sim::ThrusterGimbals gimbals =
+          gimbal_dumping_->angles(out.on_time_s, out.dumping, last_speed_rad_s_, step_s_);
+      std::copy(gimbals.data(), gimbals.data() + gimbals.size(), message.gimbal_rad().begin());
+      message.dumping(!gimbals.isZero(0.0));
+    }
   }
   message.thruster_count(static_cast<std::uint32_t>(thruster_count_));
   message.header(bus::makeHeader(ctx, name()));
@@ -189,6 +205,14 @@ ThrusterSequencerParams readParams(const bus::Scenario& scenario, const bus::Nod
     k.thruster_count = static_cast<int>(plant.thrusters.size());
     if (!scenario.hasComponent("station_keeping")) r.problem("mode", "station_keeping needs a station_keeping planner in the rig");
     r.problems(k.validate());
+    if (plant.body.wheel_count > 0 && scenario.hasComponent("wheel_tach")) {
+      GimbalDumpingParams g;
+      g.thrusters = plant.thrusters;
+      g.wheels = {plant.body.wheel_count, plant.body.wheel_axes_B, plant.body.wheel_inertia_kg_m2};
+      r.read("dump_time_s", g.dump_time_s, "s");
+      r.problems(g.validate());
+      p.gimbal_dumping = g;
+    }
   } else {
     r.problem("mode", "'" + mode + "' is none of angle_only, momentum_dumping, station_keeping");
   }

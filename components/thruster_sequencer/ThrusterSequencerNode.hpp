@@ -5,6 +5,7 @@
 #include "bus/Component.hpp"
 #include "bus/NodeMain.hpp"
 #include "components/thruster_sequencer/AngleOnlySequencer.hpp"
+#include "components/thruster_sequencer/GimbalDumping.hpp"
 #include "components/thruster_sequencer/StationKeepingFirings.hpp"
 #include "components/thruster_sequencer/ThrusterMomentumDumping.hpp"
 
@@ -17,6 +18,7 @@ struct ThrusterSequencerParams {
   AngleOnlySequencerParams angle_only;        // [-] used in kAngleOnly (see there)
   ThrusterMomentumDumpingParams dumping;      // [-] used in kMomentumDumping (see there)
   StationKeepingFiringsParams station_keeping;  // [-] used in kStationKeeping (see there)
+  std::optional<GimbalDumpingParams> gimbal_dumping;  // [-] kStationKeeping with wheels and a wheel_tach: MD firings dump
 };
 
 /// Thruster on-times on the bus. angle_only (seed S1): the Sun sensor's reading is the only
@@ -24,7 +26,9 @@ struct ThrusterSequencerParams {
 /// momentum_dumping: the wheel tachometers only; the attitude controller holds the attitude.
 /// station_keeping (seed S3): flatsat/station_keeping_plan's firings as finite burns, at
 /// the right ascension of flatsat/truth's position (standing in for orbit determination);
-/// the plant's thrusters are the seed's six in numbering order (20, 22, ... 30).
+/// the plant's thrusters are the seed's six in numbering order (20, 22, ... 30). With
+/// wheels and a wheel_tach in the rig, the firings Table I gives to momentum dumping
+/// turn their gimbals against the tachometers' stored momentum (GimbalDumping).
 class ThrusterSequencerNode final : public bus::Component {
  public:
   ThrusterSequencerNode(bus::Bus& bus, bus::NodeOptions options, const ThrusterSequencerParams& params);
@@ -47,6 +51,8 @@ class ThrusterSequencerNode final : public bus::Component {
   std::optional<AngleOnlySequencer> sequencer_;
   std::optional<ThrusterMomentumDumping> dumping_;
   std::optional<StationKeepingFirings> firings_;
+  std::optional<GimbalDumping> gimbal_dumping_;
+  double step_s_ = 0.0;  // station_keeping: [s] the step the on-times fill
   Eigen::Vector4d last_speed_rad_s_ = Eigen::Vector4d::Zero();  // rides through tachometer dropouts
 };
 

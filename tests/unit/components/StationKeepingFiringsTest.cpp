@@ -27,7 +27,7 @@ Flown fly(StationKeepingFirings& firings, double ra0_deg, int steps) {
   double weighted = 0.0;
   for (int k = 0; k < steps; ++k) {
     const double ra = ra0_deg * kDeg + k * 60.0 * kRate;
-    const double on = firings.step(ra)(1);
+    const double on = firings.step(ra).on_time_s(1);
     // The step's on-time is flown from its start: its centre is half of it on.
     weighted += on * (ra + 0.5 * on * kRate);
     out.on_s += on;
@@ -56,12 +56,12 @@ TEST_CASE("S3 firings: a new plan replaces the firings not begun, a burn under w
   // Into thruster 1's burn: 90° − 600 s of arc is 87.5°; 10 minutes of it flown.
   const double start = 87.5 + 0.01;
   double flown = 0.0;
-  for (int k = 0; k < 10; ++k) flown += firings.step((start + k * 60.0 * kRate / kDeg) * kDeg)(1);
+  for (int k = 0; k < 10; ++k) flown += firings.step((start + k * 60.0 * kRate / kDeg) * kDeg).on_time_s(1);
   CHECK(flown == Approx(600.0));
   firings.plan(2, {{3, 300.0 * kDeg, 60.0}});
   double rest = 0.0, thruster2 = 0.0, thruster3 = 0.0;
   for (int k = 10; k < 1440; ++k) {
-    const auto on = firings.step((start + k * 60.0 * kRate / kDeg) * kDeg);
+    const auto on = firings.step((start + k * 60.0 * kRate / kDeg) * kDeg).on_time_s;
     rest += on(1);
     thruster2 += on(2);
     thruster3 += on(3);
@@ -74,9 +74,9 @@ TEST_CASE("S3 firings: a new plan replaces the firings not begun, a burn under w
 TEST_CASE("S3 firings: a plan that comes inside an arc starts at once up to its centre, else waits", "[s3]") {
   StationKeepingFirings before_centre({60.0, kRate, 6});
   before_centre.plan(1, {{1, 90.0 * kDeg, 3600.0}});  // arc 82.5°..97.5°
-  CHECK(before_centre.step(85.0 * kDeg)(1) == 60.0);
+  CHECK(before_centre.step(85.0 * kDeg).on_time_s(1) == 60.0);
   StationKeepingFirings past_centre({60.0, kRate, 6});
   past_centre.plan(1, {{1, 90.0 * kDeg, 3600.0}});
-  CHECK(past_centre.step(92.0 * kDeg)(1) == 0.0);
+  CHECK(past_centre.step(92.0 * kDeg).on_time_s(1) == 0.0);
   CHECK_THROWS_WITH(StationKeepingFirings({0.0, kRate, 6}), Catch::Matchers::Contains("step_s"));
 }
