@@ -67,12 +67,7 @@ std::vector<std::string> MekfParams::validate() const {
   return errors;
 }
 
-Mekf::Mekf(const Params& params) : params_(params) {
-  if (const auto errors = params_.validate(); !errors.empty()) {
-    std::string message = "MekfParams invalid:";
-    for (const auto& e : errors) message += " " + e + ";";
-    throw std::invalid_argument(message);
-  }
+Mekf::Mekf(const Params& params) : params_(validated(params, "MekfParams invalid")) {
   gate2_ = chiSquareQuantile(2, params_.gate_probability);
   gate3_ = chiSquareQuantile(3, params_.gate_probability);
 }

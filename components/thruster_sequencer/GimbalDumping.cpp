@@ -2,10 +2,11 @@
 #include "components/thruster_sequencer/GimbalDumping.hpp"
 
 #include <algorithm>
-#include <stdexcept>
 
 #include <Eigen/Geometry>
 #include <Eigen/QR>
+
+#include "components/common/Validation.hpp"
 
 namespace flatsat::thruster_sequencer {
 
@@ -18,13 +19,7 @@ std::vector<std::string> GimbalDumpingParams::validate() const {
   return problems;
 }
 
-GimbalDumping::GimbalDumping(const GimbalDumpingParams& params) : params_(params) {
-  if (const auto problems = params.validate(); !problems.empty()) {
-    std::string text = "gimbal dumping:";
-    for (const auto& problem : problems) text += " " + problem + ";";
-    throw std::invalid_argument(text);
-  }
-}
+GimbalDumping::GimbalDumping(const GimbalDumpingParams& params) : params_(validated(params, "gimbal dumping")) {}
 
 sim::ThrusterGimbals GimbalDumping::angles(const sim::ThrusterVector& on_time_s, const sim::ThrusterVector& dumping,
                                            const Eigen::Vector4d& wheel_speed_rad_s, double step_s) const {

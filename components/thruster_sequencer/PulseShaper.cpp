@@ -27,12 +27,7 @@ std::vector<std::string> PulseShaperParams::validate() const {
   return errors;
 }
 
-PulseShaper::PulseShaper(const Params& params) : params_(params) {
-  if (const auto errors = params_.validate(); !errors.empty()) {
-    std::string message = "PulseShaperParams invalid:";
-    for (const auto& e : errors) message += " " + e + ";";
-    throw std::invalid_argument(message);
-  }
+PulseShaper::PulseShaper(const Params& params) : params_(validated(params, "PulseShaperParams invalid")) {
 }
 
 void PulseShaper::reset() { owed_s_.setZero(); }

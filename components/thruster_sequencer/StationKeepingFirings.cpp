@@ -4,7 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
-#include <stdexcept>
+
+#include "components/common/Validation.hpp"
 
 namespace flatsat::thruster_sequencer {
 
@@ -28,13 +29,8 @@ std::vector<std::string> StationKeepingFiringsParams::validate() const {
   return problems;
 }
 
-StationKeepingFirings::StationKeepingFirings(const StationKeepingFiringsParams& params) : params_(params) {
-  if (const auto problems = params.validate(); !problems.empty()) {
-    std::string text = "station-keeping firings:";
-    for (const auto& problem : problems) text += " " + problem + ";";
-    throw std::invalid_argument(text);
-  }
-}
+StationKeepingFirings::StationKeepingFirings(const StationKeepingFiringsParams& params)
+    : params_(validated(params, "station-keeping firings")) {}
 
 void StationKeepingFirings::reset() {
   pending_.clear();

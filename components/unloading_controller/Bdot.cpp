@@ -23,12 +23,7 @@ std::vector<std::string> BdotParams::validate() const {
   return errors;
 }
 
-Bdot::Bdot(const Params& params) : params_(params) {
-  if (const auto errors = params_.validate(); !errors.empty()) {
-    std::string message = "BdotParams invalid:";
-    for (const auto& e : errors) message += " " + e + ";";
-    throw std::invalid_argument(message);
-  }
+Bdot::Bdot(const Params& params) : params_(validated(params, "BdotParams invalid")) {
 }
 
 namespace {
