@@ -82,7 +82,9 @@ void Component::start() {
   if (options_.restarted && !options_.checkpoint_file.empty()) restoreCheckpoint();
   waitForProducers();
   waitUntilNothingMissing(
-      [this] { return grant_reader_.matchedWriters() == 0 ? " " + grant_reader_.topicName() : ""; },
+      [this] {
+        return (grant_reader_.matchedWriters() == 0 ? " " + grant_reader_.topicName() : "") + unmatchedReaders();
+      },
       "waiting for the time master");
   divider_ = dividerOf(name());
   publishHealth(msg::ComponentState::READY, 0, "all producers matched");

@@ -46,6 +46,11 @@ class Component : public Node {
   /// After the last step, before the STOPPED health: whatever a peer may read
   /// once this component says it stopped (a file on a shared volume) is final here.
   virtual void beforeStopped() {}
+  /// Readers of its own besides the inputs that must match their writers
+  /// before the first step (the recorder's of the grants): the names of those
+  /// that have not, each after a space; empty once all have. Without the wait
+  /// a reader that matches late, on a loaded machine, misses what came before.
+  virtual std::string unmatchedReaders() const { return {}; }
 
   /// State that must survive a restart (paced `--restart`), as JSON; null:
   /// none. Kept in NodeOptions::checkpoint_file after every step it was due.

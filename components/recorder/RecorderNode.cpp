@@ -77,6 +77,12 @@ bool RecorderNode::recordedAlready(const std::string& topic, const msg::SampleHe
   return true;
 }
 
+std::string RecorderNode::unmatchedReaders() const {
+  // The grants are recorded from step 0: a reader matched after the first
+  // ones leaves the recording without them (replay needs them for its timing).
+  return grants_->matchedWriters() == 0 ? " " + grants_->topicName() + " (its record)" : "";
+}
+
 template <class Def>
 std::unique_ptr<bus::Reader<Def>> RecorderNode::recordAsItComes(bus::Bus& bus, const Def& def) {
   return std::make_unique<bus::Reader<Def>>(

@@ -39,6 +39,7 @@ class RecorderNode final : public bus::Component {
   /// Commits the last steps: a launcher on another host summarises the
   /// recording as soon as this recorder reports STOPPED.
   void beforeStopped() override;
+  std::string unmatchedReaders() const override;
   template <class Def>
   void record(const Def& def);
   /// Topics that are not stepped: stored on arrival, never waited for.
