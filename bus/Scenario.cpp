@@ -15,6 +15,13 @@ Schedule Scenario::schedule() const {
   return schedule;
 }
 
+double Scenario::componentStep_s(const std::string& name) const {
+  for (const auto& component : components) {
+    if (component.name == name && component.scheduled) return step_s * component.rate_divider;
+  }
+  return step_s;
+}
+
 bool Scenario::hasComponent(const std::string& component) const {
   for (const auto& entry : components) {
     if (entry.name == component) return true;

@@ -57,6 +57,8 @@ struct Scenario {
   std::vector<BusFault> bus_faults;
 
   Schedule schedule() const;
+  /// [s] A component's own step: step_s times its rate divider (1 when it is not scheduled).
+  double componentStep_s(const std::string& name) const;
   bool hasComponent(const std::string& name) const;
   /// A reader over components.<name> with rate_divider already consumed.
   ParamReader componentParams(const std::string& name, ConfigProblems& problems) const;

@@ -101,6 +101,7 @@ RigidBodyWheels::RigidBodyWheels(const RigidBodyParams& params)
     J_spinless_ -= inertia_(i) * A_.col(i) * A_.col(i).transpose();
   }
   J_spinless_inv_ = J_spinless_.inverse();
+  A_pinv_ = A_.completeOrthogonalDecomposition().pseudoInverse();
   for (int i = 0; i < params.wheel_count; ++i) {
     inverse_effective_inertia_(i) = 1.0 / inertia_(i) + A_.col(i).dot(J_spinless_inv_ * A_.col(i));
   }
@@ -132,7 +133,7 @@ RigidBodyState RigidBodyWheels::heldAt(const Eigen::Quaterniond& q_NB, const Eig
   x.q_NB = q_NB.normalized();
   x.w_NB_B = w_NB_B;
   const Eigen::Vector3d in_wheels_B = x.q_NB.conjugate() * H_N_Nms - J_spinless_ * w_NB_B;
-  x.h_wheels_Nms = A_.completeOrthogonalDecomposition().solve(in_wheels_B);
+  x.h_wheels_Nms = A_pinv_ * in_wheels_B;
   return x;
 }
 

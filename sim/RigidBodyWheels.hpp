@@ -121,6 +121,7 @@ class RigidBodyWheels {
   RigidBodyParams params_;
   Eigen::Vector4d active_;                  // 1 for fitted wheels, 0 otherwise
   Eigen::Matrix<double, 3, kMaxWheels> A_;  // axes of fitted wheels, zero columns otherwise
+  Eigen::Matrix<double, kMaxWheels, 3> A_pinv_;  // its pseudo-inverse (heldAt's least squares)
   Eigen::Vector4d inertia_;                 // [kg m²] I_w of fitted wheels, 0 otherwise
   Eigen::Vector4d viscous_;                 // [N m s/rad] c_v of fitted wheels, 0 otherwise
   Eigen::Vector4d coulomb_;                 // [N m] c_c of fitted wheels, 0 otherwise

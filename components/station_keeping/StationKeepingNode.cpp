@@ -121,8 +121,7 @@ StationKeepingNodeParams readParams(const bus::Scenario& scenario, const bus::No
   const sim::DynamicsParams& plant = server.dynamics;
   StationKeepingNodeParams p;
   p.jd_epoch = sim::julianDate(plant.epoch);
-  const auto schedule = scenario.schedule();
-  p.step_s = scenario.step_s * (schedule.count(args.name) ? schedule.at(args.name) : 1U);
+  p.step_s = scenario.componentStep_s(args.name);
   auto r = scenario.componentParams(args.name, problems);
   StationKeepingParams& k = p.planner;
   r.read("station_longitude_rad", k.station_longitude_rad, "rad");

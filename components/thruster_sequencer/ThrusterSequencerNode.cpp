@@ -170,8 +170,7 @@ ThrusterSequencerParams readParams(const bus::Scenario& scenario, const bus::Nod
                                    bus::ConfigProblems& problems) {
   bus::ConfigProblems reported_by_their_owners;  // the dynamics server and the Sun sensor
   const auto plant = sim::readPlant(scenario, reported_by_their_owners);
-  const auto schedule = scenario.schedule();
-  const double step_s = scenario.step_s * (schedule.count(args.name) ? schedule.at(args.name) : 1U);
+  const double step_s = scenario.componentStep_s(args.name);
   ThrusterSequencerParams p;
   auto r = scenario.componentParams(args.name, problems);
   std::string mode = "angle_only";
