@@ -188,7 +188,8 @@ DynamicsModel::Torques DynamicsModel::torquesAt(const Environment& env, const Ei
                                       : Eigen::Vector3d::Zero();
   torques.magnetic_B_Nm = dipole_B_Am2.cross(torques.b_B_T);
   torques.residual_magnetic_B_Nm = params_.residual_dipole_B_Am2.cross(torques.b_B_T);
-  torques.aerodynamic = aerodynamicForceTorque(params_.panels, env.density_kg_m3, torques.wind_B_m_s);
+  torques.aerodynamic =
+      aerodynamicForceTorque(params_.panels, env.density_kg_m3, torques.wind_B_m_s, torques.sun_B_unit);
   torques.solar_pressure = solarPressureForceTorque(params_.panels, torques.sun_B_unit, env.solar_flux_W_m2);
   if (flaps_) {
     torques.flaps_aerodynamic = aerodynamicForceTorque(flap_panels_, env.density_kg_m3, torques.wind_B_m_s);

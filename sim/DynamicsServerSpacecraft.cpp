@@ -49,6 +49,7 @@ void readPanel(bus::ParamReader& reader, Panel& panel) {
   reader.read("area_m2", panel.area_m2, "m^2");
   reader.read("normal_body", panel.normal_B, "-");
   reader.read("cp_body_m", panel.r_cp_B_m, "m");
+  reader.read("sun_tracking_axis_body", panel.sun_tracking_axis_B, "-");
   readSurface(reader, panel);
 }
 

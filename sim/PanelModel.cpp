@@ -27,6 +27,11 @@ std::vector<std::string> Panel::validate() const {
     errors.push_back("normal_B: must be a unit vector (norm " + formatNumber(normal_B.norm()) + ")");
   }
   if (!r_cp_B_m.allFinite()) errors.push_back("r_cp_B_m: must be finite");
+  if (!sun_tracking_axis_B.allFinite() ||
+      (!sun_tracking_axis_B.isZero(0.0) && std::abs(sun_tracking_axis_B.norm() - 1.0) > kUnitNormTolerance)) {
+    errors.push_back("sun_tracking_axis_B: must be zero or a unit vector (norm " +
+                     formatNumber(sun_tracking_axis_B.norm()) + ")");
+  }
   const char* names[] = {"specular", "diffuse", "absorbed", "aero_specular"};
   const double values[] = {specular, diffuse, absorbed, aero_specular};
   for (int i = 0; i < 4; ++i) {
@@ -39,37 +44,47 @@ std::vector<std::string> Panel::validate() const {
   return errors;
 }
 
+Eigen::Vector3d Panel::normalFacing(const Eigen::Vector3d& sun_B_unit) const {
+  const Eigen::Vector3d across = sun_B_unit - sun_B_unit.dot(sun_tracking_axis_B) * sun_tracking_axis_B;
+  // A Sun within ~0.06° of the axis leaves the drive where it was mounted.
+  if (sun_tracking_axis_B.isZero(0.0) || across.norm() < 1e-3) return normal_B;
+  return across.normalized();
+}
+
 double solarFlux_W_m2(double sun_distance_m, double illumination) {
   const double au_over_r = kAstronomicalUnit_m / sun_distance_m;
   return kSolarFlux1Au_W_m2 * illumination * au_over_r * au_over_r;
 }
 
-ForceTorque aerodynamicForceTorque(const Panel& panel, double density_kg_m3, const Eigen::Vector3d& wind_B_m_s) {
+ForceTorque aerodynamicForceTorque(const Panel& panel, double density_kg_m3, const Eigen::Vector3d& wind_B_m_s,
+                                   const Eigen::Vector3d& sun_B_unit) {
   const double speed = wind_B_m_s.norm();
   if (!(speed > 0.0) || !(density_kg_m3 > 0.0)) return {};
   const Eigen::Vector3d w_unit = wind_B_m_s / speed;
-  const double cos_alpha = -panel.normal_B.dot(w_unit);
+  const Eigen::Vector3d normal = panel.normalFacing(sun_B_unit);
+  const double cos_alpha = -normal.dot(w_unit);
   if (cos_alpha <= 0.0) return {};  // the flow reaches only the other side
   const double scale = density_kg_m3 * speed * speed * panel.area_m2 * cos_alpha;
   const Eigen::Vector3d force =
-      scale * ((1.0 - panel.aero_specular) * w_unit - 2.0 * panel.aero_specular * cos_alpha * panel.normal_B);
+      scale * ((1.0 - panel.aero_specular) * w_unit - 2.0 * panel.aero_specular * cos_alpha * normal);
   return ForceTorque{force, panel.r_cp_B_m.cross(force)};
 }
 
 ForceTorque aerodynamicForceTorque(std::span<const Panel> panels, double density_kg_m3,
-                                   const Eigen::Vector3d& wind_B_m_s) {
+                                   const Eigen::Vector3d& wind_B_m_s, const Eigen::Vector3d& sun_B_unit) {
   ForceTorque total;
-  for (const Panel& panel : panels) total += aerodynamicForceTorque(panel, density_kg_m3, wind_B_m_s);
+  for (const Panel& panel : panels) total += aerodynamicForceTorque(panel, density_kg_m3, wind_B_m_s, sun_B_unit);
   return total;
 }
 
 ForceTorque solarPressureForceTorque(const Panel& panel, const Eigen::Vector3d& sun_B_unit, double flux_W_m2) {
-  const double cos_theta = panel.normal_B.dot(sun_B_unit);
+  const Eigen::Vector3d normal = panel.normalFacing(sun_B_unit);
+  const double cos_theta = normal.dot(sun_B_unit);
   if (cos_theta <= 0.0 || !(flux_W_m2 > 0.0)) return {};
   const double pressure = flux_W_m2 / kSpeedOfLight_m_s;
   const Eigen::Vector3d force =
       -pressure * panel.area_m2 * cos_theta *
-      ((1.0 - panel.specular) * sun_B_unit + 2.0 * (panel.specular * cos_theta + panel.diffuse / 3.0) * panel.normal_B);
+      ((1.0 - panel.specular) * sun_B_unit + 2.0 * (panel.specular * cos_theta + panel.diffuse / 3.0) * normal);
   return ForceTorque{force, panel.r_cp_B_m.cross(force)};
 }
 

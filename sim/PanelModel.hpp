@@ -25,6 +25,14 @@ struct Panel {
   double diffuse = 0.0;                                 // [-] ρd, light reflected diffusely (Lambertian), 0..1
   double absorbed = 1.0;                                // [-] ρa, light absorbed, 0..1; ρs + ρd + ρa = 1
   double aero_specular = 0.0;  // [-] σ, molecules reflected specularly, 0..1; the rest stick (see below)
+  /// [-] unit: a solar-array drive turns the panel about this body axis to face
+  /// the Sun (its centre of pressure on the axis stays put); zero: fixed at normal_B.
+  Eigen::Vector3d sun_tracking_axis_B = Eigen::Vector3d::Zero();
+
+  /// The outward normal with the Sun at sun_B_unit: normal_B for a fixed
+  /// panel, or for a zero sun_B_unit or one along the axis; else the unit
+  /// vector normal to the axis nearest the Sun.
+  Eigen::Vector3d normalFacing(const Eigen::Vector3d& sun_B_unit) const;
 
   /// Every violation as "field: reason"; empty when valid.
   std::vector<std::string> validate() const;
@@ -59,13 +67,16 @@ double solarFlux_W_m2(double sun_distance_m, double illumination);
 /// and Control, §17.2);
 /// σ = 1 is the specular model of seed S2 (F dt = dm · 2 V sin θ, normal to the plate).
 /// @param density_kg_m3 [kg/m³] ≥ 0.  @param wind_B_m_s [m/s] body axes.
-ForceTorque aerodynamicForceTorque(const Panel& panel, double density_kg_m3, const Eigen::Vector3d& wind_B_m_s);
+/// @param sun_B_unit [-] the Sun, which a sun-tracking panel faces (zero: as mounted).
+ForceTorque aerodynamicForceTorque(const Panel& panel, double density_kg_m3, const Eigen::Vector3d& wind_B_m_s,
+                                   const Eigen::Vector3d& sun_B_unit = Eigen::Vector3d::Zero());
 /// Sum of aerodynamicForceTorque over the panels.
 ForceTorque aerodynamicForceTorque(std::span<const Panel> panels, double density_kg_m3,
-                                   const Eigen::Vector3d& wind_B_m_s);
+                                   const Eigen::Vector3d& wind_B_m_s,
+                                   const Eigen::Vector3d& sun_B_unit = Eigen::Vector3d::Zero());
 
 /// Solar radiation pressure on one panel, P = flux / c, ŝ the unit vector to the
-/// Sun, lit when cos θ = n·ŝ > 0:
+/// Sun, n = normalFacing(ŝ), lit when cos θ = n·ŝ > 0:
 ///   F = −P A cos θ [(1 − ρs) ŝ + 2(ρs cos θ + ρd / 3) n],   τ = r_cp × F
 /// (Markley & Crassidis Eqs. 3.167–3.169; Wertz §17.2, pp. 570–573, with the
 /// three optical fractions). Absorbed and diffuse light deliver their incoming momentum along

@@ -129,6 +129,7 @@ StationKeepingNodeParams readParams(const bus::Scenario& scenario, const bus::No
   r.read("drift_horizon_s", k.drift_horizon_s, "s");
   r.read("max_burn_s", k.max_burn_s, "s");
   r.read("max_ra_shift_rad", k.max_ra_shift_rad, "rad");
+  r.read("dump_arc_rad", k.dump_arc_rad, "rad");
   r.read("box_longitude_rad", k.box_longitude_rad, "rad");
   r.read("box_inclination_rad", k.box_inclination_rad, "rad");
   r.read("box_eccentricity", k.box_eccentricity, "-");

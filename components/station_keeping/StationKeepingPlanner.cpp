@@ -61,6 +61,8 @@ Eigen::VectorXd nonNegativeLeastSquares(const Eigen::Matrix<double, 5, Eigen::Dy
   return best;
 }
 
+bool dumps(const Firing& f) { return f.job == Job::kMomentumDump || f.job == Job::kInclinationAndDump; }
+
 }  // namespace
 
 std::vector<std::string> validate(const StationKeepingParams& p) {
@@ -76,6 +78,7 @@ std::vector<std::string> validate(const StationKeepingParams& p) {
   check(p.mass_kg > 0.0 && p.mass_kg <= 1e5, "mass_kg: outside (0, 1e5] kg");
   check(p.max_burn_s >= 60.0 && p.max_burn_s <= 43200.0, "max_burn_s: outside [60, 43200] s");
   check(p.max_ra_shift_rad >= 0.0 && p.max_ra_shift_rad <= 0.25 * kPi, "max_ra_shift_rad: outside [0, pi/4] rad");
+  check(p.dump_arc_rad >= 0.0 && p.dump_arc_rad <= kPi / 6.0, "dump_arc_rad: outside [0, pi/6] rad");
   check(p.box_longitude_rad > 0.0 && p.box_longitude_rad <= 0.0175, "box_longitude_rad: outside (0, 0.0175] rad");
   check(p.box_inclination_rad > 0.0 && p.box_inclination_rad <= 0.0175,
         "box_inclination_rad: outside (0, 0.0175] rad");
@@ -107,8 +110,23 @@ StationKeepingPlan StationKeepingPlanner::step(const StationKeepingInputs& in) c
   const Effect5 wanted =
       scaled(-in.mean.i, -in.mean.e, -lon_error / params_.longitude_return_s - in.mean.drift_rad_s, params_);
 
+  // The centres a firing is flown at: an MD firing's two halves, else one.
+  const auto centres = [&](const Firing& f) {
+    return dumps(f) && params_.dump_arc_rad > 0.0
+               ? std::vector<double>{wrapRa(f.ra_rad - params_.dump_arc_rad), wrapRa(f.ra_rad + params_.dump_arc_rad)}
+               : std::vector<double>{f.ra_rad};
+  };
   const auto effectOf = [&](const Firing& f, double dv) {
-    const ImpulseEffect e = impulseEffect(dv * forceDirection_orbital(f.thruster, params_.thrusters), f.ra_rad, v, n);
+    const std::vector<double> at = centres(f);
+    ImpulseEffect e;
+    for (const double ra : at) {
+      const double part = dv / static_cast<double>(at.size());
+      const ImpulseEffect half = impulseEffect(part * forceDirection_orbital(f.thruster, params_.thrusters), ra, v, n);
+      e.i += half.i;
+      e.e += half.e;
+      e.drift_rad_s += half.drift_rad_s;
+      e.longitude_rad += half.longitude_rad;
+    }
     // A radial firing's longitude jump changes the drift the return wants.
     return std::pair{e, scaled(e.i, e.e, e.drift_rad_s + e.longitude_rad / params_.longitude_return_s, params_)};
   };
@@ -159,8 +177,11 @@ StationKeepingPlan StationKeepingPlanner::step(const StationKeepingInputs& in) c
     plan.drift_after_rad_s += e.drift_rad_s;
     plan.longitude_jump_rad += e.longitude_rad;
     plan.dv_total_m_s += dv;
-    plan.firings.push_back({firings[j].thruster, firings[j].ra_rad, dv, dv * params_.mass_kg / params_.thrust_N,
-                            firings[j].job});
+    const std::vector<double> halves = centres(firings[j]);
+    const double part = dv / static_cast<double>(halves.size());
+    for (const double ra : halves) {
+      plan.firings.push_back({firings[j].thruster, ra, part, part * params_.mass_kg / params_.thrust_N, firings[j].job});
+    }
   }
   plan.drift_target_rad_s = -(lon_error + plan.longitude_jump_rad) / params_.longitude_return_s;
   return plan;

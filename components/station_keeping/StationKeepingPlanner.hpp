@@ -19,6 +19,9 @@ struct StationKeepingParams {
   double mass_kg = 2000.0;      ///< [kg] (0, 1e5]
   double max_burn_s = 14400.0;  ///< [s] per firing, [60, 43200]: an arc of at most ±30° of orbit at 4 h
   double max_ra_shift_rad = 0.52;  ///< [rad] how far the i firings may move from 90°/270°, [0, π/4]
+  /// [rad] each firing the table gives to MD is flown as two halves this far
+  /// either side of its centre, [0, π/6]: see step().
+  double dump_arc_rad = 0.2618;
   // The station box, by which the plan weighs what it cannot correct at once.
   double box_longitude_rad = 8.7266e-4;    ///< [rad] ± half-width (0.05°), (0, 0.0175]
   double box_inclination_rad = 8.7266e-4;  ///< [rad] (0.05°), (0, 0.0175]
@@ -75,8 +78,18 @@ struct StationKeepingPlan {
 /// Least Squares Problems, 1974, ch. 23), exact over all subsets of the at
 /// most six firings. The i firings move off 90°/270° (at most
 /// max_ra_shift_rad, in steps of 2.5°) by the shift that leaves the least
-/// error, "approximately 90° RA" in the seed's words. It keeps no state: each orbit's plan follows from
-/// that orbit's mean elements alone.
+/// error, "approximately 90° RA" in the seed's words.
+///
+/// A firing the table gives to MD is flown as two halves at its centre ±
+/// dump_arc_rad. A gimbal turns a thrust line through the centre of mass only
+/// within the plane normal to that line, and both firings of 22/28 at exactly
+/// 90° and 270° have one inertial thrust line (0.59 Y_N + 0.81 Z_N at a cant
+/// of 36°), so no gimbal angle of theirs dumps the momentum along it: mostly
+/// the orbit normal, where a body-fixed torque piles up. The halves' lines
+/// part by 2 sin θ sin δ (θ the cant), so the two halves together reach every
+/// direction, while their i and e effects stay those of the whole firing
+/// times cos δ. It keeps no state: each orbit's plan follows from that
+/// orbit's mean elements alone.
 class StationKeepingPlanner {
  public:
   /// @throws std::invalid_argument listing every problem of validate(params).

@@ -62,7 +62,7 @@ StationKeepingFiringsOutput StationKeepingFirings::step(double ra_rad) {
     if (!p.burning) continue;
     const double on_s = std::min(p.remaining_s, params_.step_s);
     on(p.firing.thruster) = std::min(params_.step_s, on(p.firing.thruster) + on_s);
-    if (p.firing.dumps) out.dumping(p.firing.thruster) = 1.0;
+    if (p.firing.dumps) out.dump_left_s(p.firing.thruster) = std::max(out.dump_left_s(p.firing.thruster), p.remaining_s);
     p.remaining_s -= on_s;
   }
   std::erase_if(pending_, [](const Pending& p) { return p.remaining_s <= 0.0; });

@@ -28,7 +28,8 @@ struct ScheduledFiring {
 /// What the firings ask of the thrusters over one step.
 struct StationKeepingFiringsOutput {
   sim::ThrusterVector on_time_s = sim::ThrusterVector::Zero();  ///< [s]
-  sim::ThrusterVector dumping = sim::ThrusterVector::Zero();    ///< [-] 1: a dump firing is burning on it
+  /// [s] what is left of a dump firing burning on it, from the step's start; 0: none
+  sim::ThrusterVector dump_left_s = sim::ThrusterVector::Zero();
 };
 
 /// Flies seed S3's plans as finite burns: each firing starts when the

@@ -156,7 +156,7 @@ void ThrusterSequencerNode::step(const bus::StepContext& ctx) {
       const auto tach = tach_->at(ctx.step);
       if (tach.valid()) last_speed_rad_s_ = bus::vec4(tach.wheel_speed_rad_s());
       const sim::ThrusterGimbals gimbals =
-          gimbal_dumping_->angles(out.on_time_s, out.dumping, last_speed_rad_s_, step_s_);
+          gimbal_dumping_->angles(out.on_time_s, out.dump_left_s, last_speed_rad_s_, step_s_);
       std::copy(gimbals.data(), gimbals.data() + gimbals.size(), message.gimbal_rad().begin());
       message.dumping(!gimbals.isZero(0.0));
     }

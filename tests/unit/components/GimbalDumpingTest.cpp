@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // Seed S3's momentum dumping by gimbal offsets: the angles whose thrust
-// torque, as the plant's thruster model delivers it, is −H / dump_time_s.
+// torque, as the plant's thruster model delivers it, is −H over what is left
+// of the dump burn.
 #include <cmath>
 #include <numbers>
 
@@ -38,13 +39,14 @@ GimbalDumpingParams northCentre() {
 
 }  // namespace
 
-TEST_CASE("S3 gimbal dumping: the offsets' thrust torque is -H / dump time, where the gimbals reach it", "[s3]") {
+TEST_CASE("S3 gimbal dumping: the offsets' thrust torque is -H over the burn's rest, where the gimbals reach it",
+          "[s3]") {
   const GimbalDumpingParams p = northCentre();
   const GimbalDumping dumping(p);
   const sim::Thrusters thrusters(p.thrusters);
   sim::ThrusterVector on = sim::ThrusterVector::Zero(), dumps = sim::ThrusterVector::Zero();
   on(0) = 60.0;
-  dumps(0) = 1.0;
+  dumps(0) = 3600.0;  // an hour of the dump burn left
   // A momentum the gimbals can answer: along what 0.5° on each axis gives.
   const Eigen::Vector3d reachable = thrusters.fire(on, [] {
     sim::ThrusterGimbals g = sim::ThrusterGimbals::Zero();
@@ -59,9 +61,16 @@ TEST_CASE("S3 gimbal dumping: the offsets' thrust torque is -H / dump time, wher
   // Ten times that is past the ±2° gimbals: each angle stops at its limit.
   const sim::ThrusterGimbals clamped = dumping.angles(on, dumps, 10.0 * speeds, 60.0);
   CHECK(clamped.col(0).cwiseAbs().isApprox(Eigen::Vector2d::Constant(2 * kDeg)));
+  // With ten minutes left the same momentum asks six times the torque; past
+  // dump_time_s (an hour here) a longer burn asks no less.
+  dumps(0) = 600.0;
+  CHECK(dumping.angles(on, dumps, speeds / 6.0, 60.0).col(0).isApprox(angles.col(0), 1e-3));
+  dumps(0) = 7200.0;
+  CHECK(dumping.angles(on, dumps, speeds, 60.0).col(0).isApprox(angles.col(0), 1e-3));
+  dumps(0) = 3600.0;
   // A thruster off, not dumping, or without gimbals keeps zero angles.
   on(1) = 60.0;
-  dumps(1) = 1.0;
+  dumps(1) = 3600.0;
   CHECK(dumping.angles(on, dumps, speeds, 60.0).col(1).isZero());
   dumps(0) = 0.0;
   CHECK(dumping.angles(on, dumps, speeds, 60.0).isZero());

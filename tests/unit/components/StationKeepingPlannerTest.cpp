@@ -158,3 +158,61 @@ TEST_CASE("S3 planner: with a pair failed, only the table's thrusters fire and t
     }
   }
 }
+
+TEST_CASE("S3 planner: each MD firing flies as two halves whose thrust lines part, so its gimbals reach every "
+          "direction",
+          "[s3]") {
+  // A gimbal turns a thrust line through the centre of mass only within the
+  // plane normal to it: firings whose lines are all parallel leave the
+  // momentum along that line undumped. NC(22) at 90° and SC(28) at 270° share
+  // one inertial line; halves at ±δ part by the angle whose cosine is
+  // cos²θ + sin²θ cos 2δ (θ the cant: the zenith part of the line turns by 2δ).
+  const auto inertial = [](const PlannedFiring& f, const GeoThrusterParams& t) {
+    const Eigen::Vector3d d = forceDirection_orbital(f.thruster, t);
+    const double c = std::cos(f.ra_rad), s = std::sin(f.ra_rad);
+    return Eigen::Vector3d(d.x() * -s + d.z() * c, d.x() * c + d.z() * s, d.y());
+  };
+  const auto widestParting = [&](const StationKeepingPlan& plan, const GeoThrusterParams& t) {
+    double widest = 0.0;
+    for (const auto& a : plan.firings) {
+      for (const auto& b : plan.firings) {
+        const auto dumps = [](Job j) { return j == Job::kMomentumDump || j == Job::kInclinationAndDump; };
+        if (dumps(a.job) && dumps(b.job)) widest = std::max(widest, inertial(a, t).cross(inertial(b, t)).norm());
+      }
+    }
+    return widest;
+  };
+  StationKeepingInputs in;
+  in.mean = aDayOfDrift(0.0);
+  in.dump_dv_m_s = 0.02;
+  for (const auto failure : {PairFailure::kNone, PairFailure::k22_28, PairFailure::k20_30, PairFailure::k24_26}) {
+    for (const double sun_ra_deg : {45.0, 225.0}) {
+      in.failure = failure;
+      in.sun_N_unit = {std::cos(sun_ra_deg * kDeg), std::sin(sun_ra_deg * kDeg), 0.0};
+      StationKeepingParams p;
+      const StationKeepingPlan plan = StationKeepingPlanner(p).step(in);
+      CAPTURE(nameOf(failure), sun_ra_deg);
+      REQUIRE(plan.firings.size() <= 8);  // what the plan topic carries
+      // Halves: the same thruster and size, 2δ apart.
+      int halves = 0;
+      for (std::size_t k = 0; k + 1 < plan.firings.size(); ++k) {
+        const auto &a = plan.firings[k], &b = plan.firings[k + 1];
+        if (a.job != Job::kMomentumDump && a.job != Job::kInclinationAndDump) continue;
+        CHECK(b.thruster == a.thruster);
+        CHECK_THAT(b.dv_m_s, WithinRel(a.dv_m_s, 1e-12));
+        CHECK_THAT(std::remainder(b.ra_rad - a.ra_rad, 2 * std::numbers::pi), WithinAbs(2 * p.dump_arc_rad, 1e-12));
+        ++halves;
+        ++k;
+      }
+      CHECK(halves >= 1);  // a day whose i wants one node has one
+      const double c = std::cos(p.thrusters.cant_rad), s = std::sin(p.thrusters.cant_rad);
+      const double parting = std::sqrt(1.0 - std::pow(c * c + s * s * std::cos(2 * p.dump_arc_rad), 2));
+      CHECK(widestParting(plan, p.thrusters) > parting - 1e-9);
+      if (failure == PairFailure::kNone) {
+        CHECK_THAT(widestParting(plan, p.thrusters), WithinAbs(parting, 1e-9));  // ≈ 2 sin θ sin δ = 0.30
+        p.dump_arc_rad = 0.0;
+        CHECK(widestParting(StationKeepingPlanner(p).step(in), p.thrusters) < 1e-12);
+      }
+    }
+  }
+}

@@ -9,7 +9,7 @@
 // at 0.0016°/day², the nominal state holds it; with a pair failed the one
 // diagonal pair left for the drift must give about 1.6 m/s a year more east
 // than west, and each of its firings turns e as much as its drift is worth,
-// so the longitude there reaches 0.04–0.07° (docs/s3_station_keeping.md).
+// so the longitude there reaches 0.05–0.08° (docs/s3_station_keeping.md).
 #include <cmath>
 #include <map>
 #include <numbers>
@@ -116,6 +116,7 @@ YearResult flyYear(PairFailure failure, double station_rad) {
       in.mean = *mean;
       in.failure = failure;
       in.sun_N_unit = sim::sunPosition_N_m(jd).normalized();
+      in.dump_dv_m_s = 0.02;  // the rig's (station_keeping dump_dv_m_s)
       const auto plan = planner.step(in);
       pending = plan.firings;
     }

@@ -43,8 +43,10 @@ TEST_CASE("Panel::validate", "[sim][disturbances]") {
   p.r_cp_B_m.x() = std::numeric_limits<double>::quiet_NaN();
   p.aero_specular = 1.5;
   p.diffuse = 0.3;  // fractions now sum to 1.1
+  p.sun_tracking_axis_B = Eigen::Vector3d(0.0, 2.0, 0.0);
   const auto errors = p.validate();
-  CHECK(errors.size() == 4);
+  CHECK(errors.size() == 5);
+  CHECK(has(errors, "sun_tracking_axis_B: must be zero or a unit vector (norm 2)"));
   CHECK(has(errors, "normal_B: must be a unit vector"));
   CHECK(has(errors, "r_cp_B_m: must be finite"));
   CHECK(has(errors, "aero_specular: 1.5 not in [0, 1]"));
@@ -100,6 +102,33 @@ TEST_CASE("Solar pressure on a flat plate", "[sim][disturbances]") {
     // F = −P x̂ at (0, 0.5, 0.2): τ = r × F = −P (0, 0.2, −0.5).
     CHECK((ft.torque_B_Nm - P * Eigen::Vector3d(0.0, -0.2, 0.5)).norm() < 1e-19);
   }
+}
+
+TEST_CASE("A sun-tracking panel faces the Sun's projection normal to its drive axis", "[sim][disturbances]") {
+  // A black wing on a drive about y, its centre of pressure 8 m out on +y,
+  // the Sun at (1, 1, 1)/√3: the wing turns to (1, 0, 1)/√2, so it is lit at
+  // cos θ = √(2/3) and takes F = −P A cos θ ŝ (a black plate's pressure).
+  Panel wing = plate(Eigen::Vector3d::UnitZ(), 20.0, 0.0, 0.0);
+  wing.sun_tracking_axis_B = Eigen::Vector3d::UnitY();
+  wing.r_cp_B_m = Eigen::Vector3d(0.0, 8.0, 0.0);
+  const Eigen::Vector3d sun = Eigen::Vector3d::Ones().normalized();
+  CHECK(wing.normalFacing(sun).isApprox(Eigen::Vector3d(1.0, 0.0, 1.0).normalized(), 1e-15));
+  const double flux = 1361.0, P = flux / kSpeedOfLight_m_s;
+  const ForceTorque ft = solarPressureForceTorque(wing, sun, flux);
+  const Eigen::Vector3d force = -P * 20.0 * std::sqrt(2.0 / 3.0) * sun;
+  CHECK((ft.force_B_N - force).norm() < 1e-12 * force.norm());
+  CHECK((ft.torque_B_Nm - Eigen::Vector3d(0.0, 8.0, 0.0).cross(force)).norm() < 1e-12 * 8.0 * force.norm());
+  // With the Sun behind the mounted face the drive still turns it lit; a
+  // fixed plate stays dark. A Sun along the drive axis leaves it as mounted.
+  CHECK(solarPressureForceTorque(wing, -sun, flux).force_B_N.norm() > 0.0);
+  Panel fixed = wing;
+  fixed.sun_tracking_axis_B.setZero();
+  CHECK(solarPressureForceTorque(fixed, -Eigen::Vector3d::UnitZ(), flux).force_B_N.isZero());
+  CHECK(wing.normalFacing(Eigen::Vector3d::UnitY()) == Eigen::Vector3d::UnitZ());
+  // The wind meets the turned wing: face-on air on the Sun's side of it.
+  const Eigen::Vector3d toward_sun_face = -Eigen::Vector3d(1.0, 0.0, 1.0).normalized();
+  CHECK(aerodynamicForceTorque(wing, 1e-12, 7000.0 * toward_sun_face, sun).force_B_N.norm() > 0.0);
+  CHECK(aerodynamicForceTorque(wing, 1e-12, -7000.0 * toward_sun_face, sun).force_B_N.isZero());
 }
 
 TEST_CASE("Aerodynamic force on a flat plate in free-molecular flow", "[sim][disturbances]") {
