@@ -62,13 +62,15 @@ void addInitialPeers(dds::DomainParticipantQos& qos, std::uint32_t domain,
 /// Discovery is unicast to the metatraffic ports of the first participants
 /// of the domain on 127.0.0.1 (RTPS 2.2 §9.6.1.1 port mapping), as ROS 2's
 /// localhost-only mode does, so no multicast is ever sent.
-dds::DomainParticipantQos loopbackQos(std::uint32_t domain) {
+dds::DomainParticipantQos loopbackQos(std::uint32_t domain, bool shared_memory) {
   dds::DomainParticipantQos qos;
   qos.transport().use_builtin_transports = false;
   auto udp = std::make_shared<eprosima::fastdds::rtps::UDPv4TransportDescriptor>();
   udp->interfaceWhiteList.emplace_back("127.0.0.1");
-  qos.transport().user_transports.push_back(
-      std::make_shared<eprosima::fastdds::rtps::SharedMemTransportDescriptor>());
+  if (shared_memory) {
+    qos.transport().user_transports.push_back(
+        std::make_shared<eprosima::fastdds::rtps::SharedMemTransportDescriptor>());
+  }
   qos.transport().user_transports.push_back(udp);
 
   auto& builtin = qos.wire_protocol().builtin;
@@ -200,6 +202,12 @@ BusNetwork networkFromEnvironment() {
   network.security_dir = securityDirFromEnvironment();
   const char* multicast = std::getenv("FLATSAT_NETWORK");
   if (multicast != nullptr && std::string(multicast) == "1") network.profile = NetworkProfile::kNetwork;
+  if (const char* shm = std::getenv("FLATSAT_SHARED_MEMORY"); shm != nullptr && *shm != '\0') {
+    if (std::string(shm) != "0" && std::string(shm) != "1") {
+      throw std::invalid_argument("FLATSAT_SHARED_MEMORY='" + std::string(shm) + "': must be 0 or 1");
+    }
+    network.shared_memory = std::string(shm) == "1";
+  }
   const char* servers = std::getenv("FLATSAT_DISCOVERY_SERVER");
   const char* peers = std::getenv("FLATSAT_PEERS");
   const bool has_servers = servers != nullptr && *servers != '\0';
@@ -235,14 +243,16 @@ void useNetwork(BusOptions& options, const BusNetwork& network) {
   options.peers = network.peers;
   options.discovery_servers = network.discovery_servers;
   options.security_dir = network.security_dir;
+  options.shared_memory = network.shared_memory;
 }
 
 Bus::Bus(const BusOptions& options) : options_(options) {
+  if (!options.shared_memory) options_.tuning.data_sharing = false;
   if (options.domain_id > kMaxDomainId) {
     throw std::invalid_argument("domain id " + std::to_string(options.domain_id) +
                                 ": must be in 0.." + std::to_string(kMaxDomainId));
   }
-  auto qos = options.profile == NetworkProfile::kLoopback ? loopbackQos(options.domain_id)
+  auto qos = options.profile == NetworkProfile::kLoopback ? loopbackQos(options.domain_id, options.shared_memory)
              : options.profile == NetworkProfile::kPeers ? peersQos(options.domain_id, options.peers)
              : options.profile == NetworkProfile::kDiscoveryServer
                  ? discoveryServerQos(options.discovery_servers)

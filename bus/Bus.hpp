@@ -47,6 +47,9 @@ struct BusOptions {
   std::string security_dir;
   /// certificate and grant used with security_dir; "" means participant_name
   std::string identity;
+  /// kLoopback: the shared-memory transport and data sharing besides UDP on
+  /// 127.0.0.1; false: UDP only (BusNetwork::shared_memory)
+  bool shared_memory = true;
 };
 
 /// A process's network from its environment: FLATSAT_PEERS=a,b,... selects
@@ -59,6 +62,11 @@ struct BusNetwork {
   std::vector<std::string> peers;
   std::vector<std::string> discovery_servers;  ///< "IPv4:port", resolved
   std::string security_dir;  ///< FLATSAT_SECURE_DIR: DDS Security on, with that directory's files
+  /// FLATSAT_SHARED_MEMORY=0: no shared memory between processes (UDP on
+  /// 127.0.0.1 only, data sharing off), for rigs with a process that may be
+  /// stopped (a debugger, SIGSTOP): Fast DDS gives up an interprocess lock
+  /// after 1 s and aborts the peer waiting on one the stopped process holds.
+  bool shared_memory = true;
 };
 
 /// Domain id for a process: FLATSAT_DOMAIN overrides the scenario's value.

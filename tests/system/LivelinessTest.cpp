@@ -19,6 +19,7 @@
 
 #include "tests/support/Background.hpp"
 #include "tests/support/Rig.hpp"
+#include "tests/support/ScopedEnv.hpp"
 
 namespace fs = std::filesystem;
 using namespace flatsat;
@@ -142,6 +143,11 @@ TEST_CASE("paced: a component killed mid-run is shown dead within the lease and 
 TEST_CASE("paced: a component whose steps stop is shown late within its deadline, recorded, and on time again",
           "[system][liveliness][paced]") {
   test::exportTestDomain();
+  // A process stopped while it holds one of Fast DDS's interprocess locks
+  // (shared-memory transport, data sharing) aborts the peer that waits on it
+  // past 1 s: the rig goes over UDP on 127.0.0.1 only, as it must under a
+  // debugger.
+  const test::ScopedEnv no_shared_memory("FLATSAT_SHARED_MEMORY", "0");
   const std::string out = test::freshDir("late-paced");
   test::Background rig(test::kFlatsat + " run " + kDefault + " -q --no-plots --out " + out +
                            " --set mode=paced --set duration_orbits=null --set duration_s=15",
