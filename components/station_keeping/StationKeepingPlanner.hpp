@@ -86,7 +86,7 @@ struct StationKeepingPlan {
 /// 90° and 270° have one inertial thrust line (0.59 Y_N + 0.81 Z_N at a cant
 /// of 36°), so no gimbal angle of theirs dumps the momentum along it: mostly
 /// the orbit normal, where a body-fixed torque piles up. The halves' lines
-/// part by 2 sin θ sin δ (θ the cant), so the two halves together reach every
+/// part by about 2 sin θ sin δ (θ the cant), so the two halves together reach every
 /// direction, while their i and e effects stay those of the whole firing
 /// times cos δ. It keeps no state: each orbit's plan follows from that
 /// orbit's mean elements alone.
