@@ -44,11 +44,10 @@ std::vector<std::string> Panel::validate() const {
   return errors;
 }
 
-Eigen::Vector3d Panel::normalFacing(const Eigen::Vector3d& sun_B_unit) const {
+Eigen::Vector3d Panel::trackedNormal(const Eigen::Vector3d& sun_B_unit) const {
   const Eigen::Vector3d across = sun_B_unit - sun_B_unit.dot(sun_tracking_axis_B) * sun_tracking_axis_B;
   // A Sun within ~0.06° of the axis leaves the drive where it was mounted.
-  if (sun_tracking_axis_B.isZero(0.0) || across.norm() < 1e-3) return normal_B;
-  return across.normalized();
+  return across.norm() < 1e-3 ? normal_B : across.normalized();
 }
 
 double solarFlux_W_m2(double sun_distance_m, double illumination) {

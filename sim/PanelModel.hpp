@@ -32,10 +32,15 @@ struct Panel {
   /// The outward normal with the Sun at sun_B_unit: normal_B for a fixed
   /// panel, or for a zero sun_B_unit or one along the axis; else the unit
   /// vector normal to the axis nearest the Sun.
-  Eigen::Vector3d normalFacing(const Eigen::Vector3d& sun_B_unit) const;
+  Eigen::Vector3d normalFacing(const Eigen::Vector3d& sun_B_unit) const {
+    return sun_tracking_axis_B.isZero(0.0) ? normal_B : trackedNormal(sun_B_unit);
+  }
 
   /// Every violation as "field: reason"; empty when valid.
   std::vector<std::string> validate() const;
+
+ private:
+  Eigen::Vector3d trackedNormal(const Eigen::Vector3d& sun_B_unit) const;
 };
 
 /// Force on the spacecraft [N] and its torque about the centre of mass [N m], body axes.
