@@ -21,6 +21,7 @@
 #include "bus/CommandAcks.hpp"
 #include "bus/Endpoints.hpp"
 #include "bus/Stamp.hpp"
+#include "bus/StepSamples.hpp"
 #include "bus/Topics.hpp"
 
 namespace flatsat::bus {
@@ -170,7 +171,7 @@ class Input final : public InputBase {
   /// (the recorder) see each sample once.
   bool resent(const Sample& sample) const;
   mutable MutexIfThreaded mutex_;
-  std::map<std::uint64_t, Sample> samples_;
+  StepSamples<Sample> samples_;
   std::uint64_t consumed_before_ = 0;  ///< steps below this were dropped (dropBefore)
   std::uint64_t hold_steps_ = 1;       ///< paced: steps a last sample is held for (the lease)
   Reader<Def> reader_;
