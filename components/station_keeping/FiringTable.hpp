@@ -12,6 +12,9 @@ namespace flatsat::station_keeping {
 /// drift (mean motion), e eccentricity, MD momentum dumping by gimbal offset.
 enum class Job { kInclinationDriftEccentricity, kMomentumDump, kInclinationAndDump, kDriftAndEccentricity };
 
+/// Table I gives the firing momentum dumping: MD alone, or i and MD.
+inline bool dumpsMomentum(Job job) { return job == Job::kMomentumDump || job == Job::kInclinationAndDump; }
+
 /// Where in the year the Sun is, as the table needs it.
 struct Season {
   /// Winter/spring: from the December to the June solstice (cos RA_sun > 0);

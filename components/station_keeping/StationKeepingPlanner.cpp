@@ -61,8 +61,6 @@ Eigen::VectorXd nonNegativeLeastSquares(const Eigen::Matrix<double, 5, Eigen::Dy
   return best;
 }
 
-bool dumps(const Firing& f) { return f.job == Job::kMomentumDump || f.job == Job::kInclinationAndDump; }
-
 }  // namespace
 
 std::vector<std::string> validate(const StationKeepingParams& p) {
@@ -112,7 +110,7 @@ StationKeepingPlan StationKeepingPlanner::step(const StationKeepingInputs& in) c
 
   // The centres a firing is flown at: an MD firing's two halves, else one.
   const auto centres = [&](const Firing& f) {
-    return dumps(f) && params_.dump_arc_rad > 0.0
+    return dumpsMomentum(f.job) && params_.dump_arc_rad > 0.0
                ? std::vector<double>{wrapRa(f.ra_rad - params_.dump_arc_rad), wrapRa(f.ra_rad + params_.dump_arc_rad)}
                : std::vector<double>{f.ra_rad};
   };

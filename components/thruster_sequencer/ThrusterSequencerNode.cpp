@@ -2,6 +2,7 @@
 #include "components/thruster_sequencer/ThrusterSequencerNode.hpp"
 
 #include "components/common/StateJson.hpp"
+#include "components/station_keeping/FiringTable.hpp"
 
 #include "bus/Convert.hpp"
 #include "components/sun_sensor/SunSensorNode.hpp"
@@ -40,8 +41,7 @@ std::vector<ScheduledFiring> scheduled(const msg::StationKeepingPlan& plan) {
   std::vector<ScheduledFiring> out;
   const std::size_t n = std::min<std::size_t>(plan.firing_count(), plan.thruster().size());
   for (std::size_t k = 0; k < n; ++k) {
-    // Table I's jobs 1 (MD) and 2 (i and MD) dump momentum.
-    const bool dumps = plan.job()[k] == 1 || plan.job()[k] == 2;
+    const bool dumps = station_keeping::dumpsMomentum(static_cast<station_keeping::Job>(plan.job()[k]));
     out.push_back({(plan.thruster()[k] - 20) / 2, plan.ra_rad()[k], plan.duration_s()[k], dumps});
   }
   return out;

@@ -176,8 +176,7 @@ TEST_CASE("S3 planner: each MD firing flies as two halves whose thrust lines par
     double widest = 0.0;
     for (const auto& a : plan.firings) {
       for (const auto& b : plan.firings) {
-        const auto dumps = [](Job j) { return j == Job::kMomentumDump || j == Job::kInclinationAndDump; };
-        if (dumps(a.job) && dumps(b.job)) widest = std::max(widest, inertial(a, t).cross(inertial(b, t)).norm());
+        if (dumpsMomentum(a.job) && dumpsMomentum(b.job)) widest = std::max(widest, inertial(a, t).cross(inertial(b, t)).norm());
       }
     }
     return widest;
@@ -197,7 +196,7 @@ TEST_CASE("S3 planner: each MD firing flies as two halves whose thrust lines par
       int halves = 0;
       for (std::size_t k = 0; k + 1 < plan.firings.size(); ++k) {
         const auto &a = plan.firings[k], &b = plan.firings[k + 1];
-        if (a.job != Job::kMomentumDump && a.job != Job::kInclinationAndDump) continue;
+        if (!dumpsMomentum(a.job)) continue;
         CHECK(b.thruster == a.thruster);
         CHECK_THAT(b.dv_m_s, WithinRel(a.dv_m_s, 1e-12));
         CHECK_THAT(std::remainder(b.ra_rad - a.ra_rad, 2 * std::numbers::pi), WithinAbs(2 * p.dump_arc_rad, 1e-12));
