@@ -40,8 +40,9 @@ std::string text(sqlite3_stmt* stmt, int column) {
 }  // namespace
 
 Recording::Recording(const std::string& path, Access access) : path_(path) {
-  const int flags = access == Access::kCreate ? SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE
-                                              : SQLITE_OPEN_READONLY;
+  // No SQLite mutexes: the connection has one user at a time (see settle()).
+  const int flags = SQLITE_OPEN_NOMUTEX | (access == Access::kCreate ? SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE
+                                                                     : SQLITE_OPEN_READONLY);
   if (sqlite3_open_v2(path.c_str(), &db_, flags, nullptr) != SQLITE_OK) {
     const std::string reason = db_ ? sqlite3_errmsg(db_) : "out of memory";
     sqlite3_close(db_);
@@ -77,10 +78,21 @@ Recording::Recording(const std::string& path, Access access) : path_(path) {
     throw std::runtime_error(path + ": " + sqlite3_errmsg(db_));
   }
   exec("BEGIN");
+  writer_ = std::thread([this] { writeBatches(); });
 }
 
 Recording::~Recording() {
   if (writing_) {
+    {
+      std::unique_lock lock(queue_mutex_);
+      try {
+        handOver(lock);
+      } catch (const std::exception&) {  // the writer failed before: what it stored is committed
+      }
+      closing_ = true;
+      writer_changed_.notify_all();
+    }
+    writer_.join();  // after the batch handed over last
     // The index's sort in memory, not through temporary files.
     sqlite3_exec(db_, "PRAGMA temp_store=MEMORY", nullptr, nullptr, nullptr);
     sqlite3_exec(db_, kLargeCache, nullptr, nullptr, nullptr);
@@ -91,7 +103,54 @@ Recording::~Recording() {
   sqlite3_close(db_);
 }
 
+void Recording::writeBatches() {
+  std::unique_lock lock(queue_mutex_);
+  for (;;) {
+    writer_changed_.wait(lock, [this] { return handed_ || closing_; });
+    if (!handed_) return;
+    lock.unlock();
+    std::string failure;
+    try {
+      store(batch_);
+      exec("COMMIT");
+      exec("BEGIN");
+    } catch (const std::exception& e) {
+      failure = e.what();
+    }
+    batch_.rows.clear();
+    batch_.bytes.clear();
+    lock.lock();
+    if (failure_.empty()) failure_ = failure;
+    handed_ = false;
+    writer_changed_.notify_all();
+  }
+}
+
+void Recording::throwIfFailed() const {
+  if (!failure_.empty()) throw std::runtime_error(failure_);
+}
+
+void Recording::handOver(std::unique_lock<std::mutex>& lock) {
+  writer_changed_.wait(lock, [this] { return !handed_; });
+  throwIfFailed();
+  std::swap(queued_, batch_);
+  handed_ = true;
+  writer_changed_.notify_all();
+}
+
+std::unique_lock<std::mutex> Recording::settle() const {
+  std::unique_lock lock(queue_mutex_);
+  writer_changed_.wait(lock, [this] { return !handed_; });
+  if (!queued_.rows.empty()) {
+    store(queued_);
+    queued_.rows.clear();
+    queued_.bytes.clear();
+  }
+  return lock;
+}
+
 bool Recording::holdsSamples() const {
+  const auto lock = settle();
   Statement s(db_, "SELECT 1 FROM samples LIMIT 1", path_);
   return sqlite3_step(s.stmt) == SQLITE_ROW;
 }
@@ -107,23 +166,50 @@ void Recording::exec(const char* sql) const {
 
 void Recording::insert(const std::string& topic, std::uint64_t step, const std::string& source,
                        std::int64_t sim_time_ns, const std::vector<std::uint8_t>& payload) {
-  sqlite3_bind_text(insert_, 1, topic.c_str(), -1, SQLITE_TRANSIENT);
-  sqlite3_bind_int64(insert_, 2, static_cast<sqlite3_int64>(step));
-  sqlite3_bind_text(insert_, 3, source.c_str(), -1, SQLITE_TRANSIENT);
-  sqlite3_bind_int64(insert_, 4, sim_time_ns);
-  sqlite3_bind_blob(insert_, 5, payload.data(), static_cast<int>(payload.size()), SQLITE_TRANSIENT);
-  if (sqlite3_step(insert_) != SQLITE_DONE) {
-    throw std::runtime_error(path_ + ": insert failed: " + sqlite3_errmsg(db_));
+  if (!writing_) throw std::logic_error(path_ + ": opened for reading, not for inserting");
+  std::lock_guard lock(queue_mutex_);
+  throwIfFailed();
+  auto append = [this](const void* data, std::size_t size) {
+    const std::size_t at = queued_.bytes.size();
+    queued_.bytes.append(static_cast<const char*>(data), size);
+    return at;
+  };
+  const std::size_t topic_at = append(topic.data(), topic.size());
+  const std::size_t source_at = append(source.data(), source.size());
+  const std::size_t payload_at = append(payload.data(), payload.size());
+  queued_.rows.push_back(
+      {topic_at, topic.size(), source_at, source.size(), payload_at, payload.size(), step, sim_time_ns});
+}
+
+void Recording::store(const Rows& rows) const {
+  // SQLITE_STATIC: rows.bytes outlives each sqlite3_step, so SQLite copies nothing.
+  for (const Rows::Row& row : rows.rows) {
+    const char* bytes = rows.bytes.data();
+    sqlite3_bind_text(insert_, 1, bytes + row.topic, static_cast<int>(row.topic_size), SQLITE_STATIC);
+    sqlite3_bind_int64(insert_, 2, static_cast<sqlite3_int64>(row.step));
+    sqlite3_bind_text(insert_, 3, bytes + row.source, static_cast<int>(row.source_size), SQLITE_STATIC);
+    sqlite3_bind_int64(insert_, 4, row.sim_time_ns);
+    sqlite3_bind_blob(insert_, 5, bytes + row.payload, static_cast<int>(row.payload_size), SQLITE_STATIC);
+    const int rc = sqlite3_step(insert_);
+    sqlite3_reset(insert_);
+    if (rc != SQLITE_DONE) throw std::runtime_error(path_ + ": insert failed: " + sqlite3_errmsg(db_));
   }
-  sqlite3_reset(insert_);
 }
 
 void Recording::commit() {
-  exec("COMMIT");
-  exec("BEGIN");
+  std::unique_lock lock(queue_mutex_);
+  handOver(lock);
+  writer_changed_.wait(lock, [this] { return !handed_; });
+  throwIfFailed();
+}
+
+void Recording::commitInBackground() {
+  std::unique_lock lock(queue_mutex_);
+  handOver(lock);
 }
 
 void Recording::setMeta(const std::string& key, const std::string& value) {
+  const auto lock = settle();
   Statement s(db_, "INSERT OR REPLACE INTO meta VALUES (?, ?)", path_);
   sqlite3_bind_text(s.stmt, 1, key.c_str(), -1, SQLITE_TRANSIENT);
   sqlite3_bind_text(s.stmt, 2, value.c_str(), -1, SQLITE_TRANSIENT);
@@ -133,6 +219,7 @@ void Recording::setMeta(const std::string& key, const std::string& value) {
 }
 
 std::string Recording::meta(const std::string& key) const {
+  const auto lock = settle();
   Statement s(db_, "SELECT value FROM meta WHERE key = ?", path_);
   sqlite3_bind_text(s.stmt, 1, key.c_str(), -1, SQLITE_TRANSIENT);
   return sqlite3_step(s.stmt) == SQLITE_ROW ? text(s.stmt, 0) : "";
@@ -143,6 +230,7 @@ void Recording::forEach(
     const std::function<void(std::uint64_t, const std::string&, const std::vector<std::uint8_t>&)>&
         visit,
     Order order) const {
+  const auto lock = settle();
   // Rows are inserted as samples arrive, so rowid is the arrival order.
   Statement s(db_,
               order == Order::kStep
@@ -159,6 +247,7 @@ void Recording::forEach(
 void Recording::forEachAt(
     const std::string& topic, std::uint64_t step,
     const std::function<void(const std::string&, const std::vector<std::uint8_t>&)>& visit) const {
+  const auto lock = settle();
   Statement s(db_, "SELECT source, payload FROM samples WHERE topic = ? AND step = ? ORDER BY source",
               path_);
   sqlite3_bind_text(s.stmt, 1, topic.c_str(), -1, SQLITE_TRANSIENT);
@@ -167,6 +256,7 @@ void Recording::forEachAt(
 }
 
 std::map<std::string, std::set<std::string>> Recording::topicSources() const {
+  const auto lock = settle();
   Statement s(db_, "SELECT DISTINCT topic, source FROM samples", path_);
   std::map<std::string, std::set<std::string>> out;
   while (sqlite3_step(s.stmt) == SQLITE_ROW) out[text(s.stmt, 0)].insert(text(s.stmt, 1));
@@ -174,12 +264,14 @@ std::map<std::string, std::set<std::string>> Recording::topicSources() const {
 }
 
 std::uint64_t Recording::count(const std::string& topic) const {
+  const auto lock = settle();
   Statement s(db_, "SELECT COUNT(*) FROM samples WHERE topic = ?", path_);
   sqlite3_bind_text(s.stmt, 1, topic.c_str(), -1, SQLITE_TRANSIENT);
   return sqlite3_step(s.stmt) == SQLITE_ROW ? static_cast<std::uint64_t>(sqlite3_column_int64(s.stmt, 0)) : 0;
 }
 
 std::optional<std::uint64_t> Recording::lastStep(const std::string& topic) const {
+  const auto lock = settle();
   Statement s(db_, "SELECT MAX(step) FROM samples WHERE topic = ?", path_);
   sqlite3_bind_text(s.stmt, 1, topic.c_str(), -1, SQLITE_TRANSIENT);
   if (sqlite3_step(s.stmt) != SQLITE_ROW || sqlite3_column_type(s.stmt, 0) == SQLITE_NULL) return std::nullopt;
@@ -187,6 +279,7 @@ std::optional<std::uint64_t> Recording::lastStep(const std::string& topic) const
 }
 
 void Recording::eraseAfter(std::uint64_t step) {
+  const auto lock = settle();
   Statement s(db_, "DELETE FROM samples WHERE step > ?", path_);
   sqlite3_bind_int64(s.stmt, 1, static_cast<sqlite3_int64>(step));
   if (sqlite3_step(s.stmt) != SQLITE_DONE) {
@@ -196,6 +289,7 @@ void Recording::eraseAfter(std::uint64_t step) {
 }
 
 std::string Recording::digest(const std::vector<std::string>& excluded) const {
+  const auto lock = settle();
   std::unique_ptr<EVP_MD_CTX, decltype(&EVP_MD_CTX_free)> ctx(EVP_MD_CTX_new(), EVP_MD_CTX_free);
   EVP_DigestInit_ex(ctx.get(), EVP_sha256(), nullptr);
   Statement s(db_, "SELECT topic, source, step, payload FROM samples ORDER BY topic, source, step",

@@ -1,11 +1,14 @@
 // SPDX-License-Identifier: Apache-2.0
 #pragma once
+#include <condition_variable>
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <mutex>
 #include <optional>
 #include <set>
 #include <string>
+#include <thread>
 #include <vector>
 
 struct sqlite3;
@@ -16,6 +19,15 @@ namespace flatsat::bus {
 /// A run's recording: one SQLite file, WAL journal, every sample as its CDR
 /// bytes keyed by topic, step and source. Written in transactions as the run
 /// goes, so a crash loses at most the open transaction.
+///
+/// Created for writing, it inserts on a thread of its own: insert() only
+/// queues the row, and each commit hands the queued rows to that thread.
+/// SQLite's insert was the recorder's whole cost and a tenth of a composed
+/// step (issue 10, callgrind); the writer takes it to the other core. The
+/// connection belongs to the writer while it holds a batch and otherwise to
+/// the caller; every other call first waits for the writer and then stores
+/// the queued rows itself, so reads see every insert, in arrival order.
+/// A row the writer could not store makes the next insert or commit throw.
 class Recording {
  public:
   enum class Access { kCreate, kRead };
@@ -26,8 +38,12 @@ class Recording {
 
   void insert(const std::string& topic, std::uint64_t step, const std::string& source,
               std::int64_t sim_time_ns, const std::vector<std::uint8_t>& payload);
-  /// Commits what was inserted since the last commit and opens a new transaction.
+  /// Commits what was inserted since the last commit and opens a new
+  /// transaction; returns once it is committed (another connection sees it).
   void commit();
+  /// The same commit on the writer's thread; returns at once unless the
+  /// writer is still busy with the commit before.
+  void commitInBackground();
   void setMeta(const std::string& key, const std::string& value);
   std::string meta(const std::string& key) const;
 
@@ -56,12 +72,40 @@ class Recording {
   std::string digest(const std::vector<std::string>& excluded) const;
 
  private:
+  /// Rows queued for the writer, their text and bytes in one buffer: no
+  /// allocation per row once the buffers have grown.
+  struct Rows {
+    struct Row {
+      std::size_t topic, topic_size, source, source_size, payload, payload_size;
+      std::uint64_t step;
+      std::int64_t sim_time_ns;
+    };
+    std::vector<Row> rows;
+    std::string bytes;
+  };
   void exec(const char* sql) const;
   bool holdsSamples() const;
+  void store(const Rows& rows) const;
+  /// Takes the connection from the writer: waits until it is idle, then
+  /// stores the queued rows. The lock keeps the writer idle while it is held.
+  std::unique_lock<std::mutex> settle() const;
+  /// Hands the queued rows to the writer (waiting for its batch before); under lock.
+  void handOver(std::unique_lock<std::mutex>& lock);
+  void throwIfFailed() const;  ///< under queue_mutex_
+  void writeBatches();         ///< the writer thread
+
   std::string path_;
   sqlite3* db_ = nullptr;
   sqlite3_stmt* insert_ = nullptr;
   bool writing_ = false;
+  mutable std::mutex queue_mutex_;
+  mutable std::condition_variable writer_changed_;
+  mutable Rows queued_;  // inserted, not yet handed to the writer
+  Rows batch_;           // the writer's, while handed_
+  mutable bool handed_ = false;
+  bool closing_ = false;
+  std::string failure_;  // why the writer could not store a batch
+  std::thread writer_;
 };
 
 }  // namespace flatsat::bus

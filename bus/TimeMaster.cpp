@@ -5,6 +5,9 @@
 #include <sched.h>
 #include <sys/prctl.h>
 
+#include <algorithm>
+#include <string_view>
+
 #include <spdlog/spdlog.h>
 
 namespace flatsat::bus {
@@ -15,8 +18,14 @@ TimeMaster::TimeMaster(Bus& bus, NodeOptions options, Timing timing)
       done_reader_(bus, topics::kStepDone,
                    [this](const msg::StepDone& done) {
                      {
+                       const auto& source = done.header().source();
+                       const std::string_view from(source.data(), std::find(source.begin(), source.end(), '\0') - source.begin());
                        std::lock_guard lock(mutex_);
-                       done_[done.header().step()].insert(text(done.header().source()));
+                       for (Awaited& a : awaited_) {
+                         if (a.component != from) continue;
+                         a.newest_done = std::max(a.newest_done.value_or(0), done.header().step());
+                         break;
+                       }
                      }
                      changed_.notify_all();
                    }),
@@ -47,6 +56,9 @@ TimeMaster::TimeMaster(Bus& bus, NodeOptions options, Timing timing)
       bus_fault_events_(bus, topics::kFaultEvent),
       bus_fault_acks_(bus) {
   if (timing.period_ns <= 0) throw NodeFailure(name() + ": step period must be > 0");
+  for (const auto& [component, divider] : options_.schedule) {
+    if (component != name()) awaited_.push_back({component, divider, std::nullopt});
+  }
   acknowledgeBusFaults(bus_fault_acks_);
 }
 
@@ -111,22 +123,21 @@ void TimeMaster::resendStep(std::uint64_t k, const std::string& missing) {
   grant_.rewriteLast();
 }
 
+std::string TimeMaster::notDone(std::uint64_t k) const {
+  std::string missing;
+  for (const Awaited& a : awaited_) {
+    if (k % a.divider == 0 && !(a.newest_done && *a.newest_done >= k)) missing += " " + a.component;
+  }
+  return missing;
+}
+
 void TimeMaster::waitForDone(std::uint64_t k) {
   const auto deadline = std::chrono::steady_clock::now() + options_.step_timeout;
   auto next_resend = std::chrono::steady_clock::now() + kResendAfter;
   std::unique_lock lock(mutex_);
   for (;;) {
-    std::string missing;
-    const auto& done = done_[k];
-    for (const auto& [component, divider] : options_.schedule) {
-      if (component != name() && k % divider == 0 && done.count(component) == 0) {
-        missing += " " + component;
-      }
-    }
-    if (missing.empty()) {
-      done_.erase(k);
-      return;
-    }
+    const std::string missing = notDone(k);
+    if (missing.empty()) return;
     if (auto failed = failedComponents(); !failed.empty()) {
       throw NodeFailure(name() + ": step " + std::to_string(k) + ": component failed:" + failed);
     }
@@ -161,7 +172,6 @@ void TimeMaster::waitForTick(std::chrono::steady_clock::time_point tick) {
   }
   lock.lock();
   // Paced steps wait for nobody; who was late shows in their health.
-  done_.clear();
   findLate(tick);
 }
 

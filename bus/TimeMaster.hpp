@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #pragma once
 #include <map>
+#include <optional>
 #include <set>
 #include <utility>
 #include <vector>
@@ -87,7 +88,17 @@ class TimeMaster : public Node {
   Timing timing_;
   std::chrono::steady_clock::time_point start_;        // of step 0 (paced ticks)
   std::chrono::steady_clock::time_point next_health_;  // heartbeat
-  std::map<std::uint64_t, std::set<std::string>> done_;
+  /// Each component the master waits for and the newest step it reported
+  /// done. Lockstep grants k+1 only after all of k, and a component steps in
+  /// order, so "done with k" is "newest done >= k": a flat table scanned by
+  /// name, with no allocation per StepDone (issue 10's composed profile).
+  struct Awaited {
+    std::string component;
+    std::uint32_t divider = 1;
+    std::optional<std::uint64_t> newest_done;
+  };
+  std::vector<Awaited> awaited_;
+  std::string notDone(std::uint64_t k) const;  ///< " a b" of the components due at k and not done; under mutex_
   std::map<std::string, msg::ComponentState> states_;
   std::map<std::string, std::string> messages_;
   std::set<std::string> lost_;  // components whose liveliness is lost

@@ -58,6 +58,7 @@ class EstimatorNode final : public bus::Component {
   bool use_magnetometer_;          // the field corrects after initialisation
   bool mekf_initialized_ = false;  // the MEKF's previous step had an attitude
   bool star_valid_ = false;        // the star tracker's sample of this step was usable
+  std::optional<unsigned> status_bits_;  // the sensor states the last status text told
   std::optional<Eigen::Vector3d> previous_w_B_rad_s_;  // [rad/s] gyro rate of the previous step
 
   void stepS0(const bus::StepContext& ctx, const msg::GyroReading& gyro, const Eigen::Vector3d& sun_B_unit,

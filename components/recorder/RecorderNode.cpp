@@ -133,7 +133,7 @@ void RecorderNode::step(const bus::StepContext& ctx) {
   if (recorded(ctx.step)) recordDeliveries(ctx);
   if ((ctx.step + 1) % params_.commit_every_steps != 0) return;
   std::lock_guard lock(recording_mutex_);
-  recording_.commit();
+  recording_.commitInBackground();
 }
 
 void RecorderNode::beforeStopped() {

@@ -99,3 +99,41 @@ TEST_CASE("A recording still open (as after a crash) answers without its index, 
   std::filesystem::remove(path.string() + "-wal");
   std::filesystem::remove(path.string() + "-shm");
 }
+
+TEST_CASE("A recording's writer thread keeps arrival order and hides nothing from reads or other readers",
+          "[recording]") {
+  const auto path = std::filesystem::temp_directory_path() /
+                    ("flatsat-recording-writer-" + std::to_string(::getpid()) + ".sqlite");
+  std::filesystem::remove(path);
+  {
+    Recording writer(path.string(), Recording::Access::kCreate);
+    // Batches handed to the writer thread while more rows queue behind them.
+    std::uint64_t step = 0;
+    for (int batch = 0; batch < 20; ++batch) {
+      for (int i = 0; i < 97; ++i, ++step) {
+        writer.insert("t", 5000 - step, step % 2 ? "odd" : "even", static_cast<std::int64_t>(step),
+                      std::vector<std::uint8_t>(step % 300, static_cast<std::uint8_t>(step)));
+      }
+      writer.commitInBackground();
+    }
+    for (int i = 0; i < 13; ++i, ++step) writer.insert("t", 5000 - step, "late", 0, {1, 2, 3});
+    // Read on the writing connection: the queued rows too, after the handed ones.
+    const auto seen = visit(writer, Recording::Order::kArrival);
+    REQUIRE(seen.size() == step);
+    for (std::uint64_t i = 0; i < step; ++i) CHECK(seen[i].first == 5000 - i);
+    CHECK(seen.back().second == "late");
+    writer.commit();
+    // Another connection sees everything once commit() returned.
+    const Recording reader(path.string(), Recording::Access::kRead);
+    CHECK(reader.count("t") == step);
+    std::vector<std::uint8_t> payload;
+    reader.forEachAt("t", 5000 - 299, [&](const std::string& source, const std::vector<std::uint8_t>& p) {
+      CHECK(source == "odd");
+      payload = p;
+    });
+    CHECK(payload == std::vector<std::uint8_t>(299, static_cast<std::uint8_t>(299)));
+  }
+  std::filesystem::remove(path);
+  std::filesystem::remove(path.string() + "-wal");
+  std::filesystem::remove(path.string() + "-shm");
+}
