@@ -19,6 +19,10 @@ estimator::ReferenceModelParams readReferenceModel(bus::ParamReader& r, const si
   } else if (field != "dipole") {
     r.problem("reference_field", "'" + field + "' is not dipole or plant");
   }
+  r.read("reference_field_node_s", p.field_node_s, "s");
+  if (!(p.field_node_s >= 0.0 && p.field_node_s <= 10.0)) {
+    r.problem("reference_field_node_s", "must be in 0..10 s (0: the field model at every step)");
+  }
   std::string orbit = "plant";
   r.read("reference_orbit", orbit);
   if (orbit == "plant") {

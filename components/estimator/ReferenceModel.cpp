@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "components/estimator/ReferenceModel.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 #include "components/common/Validation.hpp"
@@ -16,6 +18,7 @@ std::vector<std::string> ReferenceModelParams::validate() const {
   if (field_harmonics && (field_harmonics->degree < 1 || field_harmonics->degree > 13)) {
     problems.push_back("field_harmonics.degree: must be in 1..13");
   }
+  if (!(field_node_s >= 0.0 && field_node_s <= 10.0)) problems.push_back("field_node_s: must be in 0..10 s");
   return problems;
 }
 
@@ -27,15 +30,41 @@ ReferenceModel::ReferenceModel(const Params& params)
   if (params.field_harmonics) harmonics_.emplace(*params.field_harmonics);
 }
 
+Eigen::Vector3d ReferenceModel::fieldAt(const Eigen::Vector3d& r_N_m, double jd) const {
+  const Eigen::Matrix3d R_EN = sim::R_EN(jd);
+  const Eigen::Vector3d r_E = R_EN * r_N_m;
+  return R_EN.transpose() * (harmonics_ ? harmonics_->b_E_T(r_E) : field_.b_E_T(r_E));
+}
+
+bool ReferenceModel::takeNodes(double t_s) {
+  const double h = params_.field_node_s;
+  if (h <= 0.0) return false;
+  const auto j = static_cast<long long>(std::floor(t_s / h));
+  if (nodes_ == 0 || node_[2].index != j) {
+    // t_j <= t_s, and after every earlier call's time: the orbit is still asked in order.
+    const double t_j = static_cast<double>(j) * h;
+    const FieldNode node{j, fieldAt(orbit_.at(t_j).r_N_m, jd_epoch_ + t_j / 86400.0)};
+    node_ = {node_[1], node_[2], node};
+    nodes_ = std::min(nodes_ + 1, 3);
+  }
+  return nodes_ == 3 && node_[0].index == j - 2 && node_[1].index == j - 1;
+}
+
+Eigen::Vector3d ReferenceModel::extrapolatedField(double t_s) const {
+  // Lagrange through x = −2, −1, 0 at x = τ.
+  const double tau = t_s / params_.field_node_s - static_cast<double>(node_[2].index);
+  return 0.5 * tau * (tau + 1.0) * node_[0].b_N_T - tau * (tau + 2.0) * node_[1].b_N_T +
+         0.5 * (tau + 1.0) * (tau + 2.0) * node_[2].b_N_T;
+}
+
 ReferenceVectors ReferenceModel::step(std::int64_t t_ns) {
   const double t_s = sim::toSeconds(t_ns);
   const double jd = jd_epoch_ + t_s / 86400.0;
+  const bool from_nodes = takeNodes(t_s);  // before orbit_.at(t_s): it may ask for t_j <= t_s
   const auto state = orbit_.at(t_s);
   const Eigen::Vector3d& r_N = state.r_N_m;
-  const Eigen::Matrix3d R_EN = sim::R_EN(jd);
   ReferenceVectors out;
-  const Eigen::Vector3d r_E = R_EN * r_N;
-  out.b_N_T = R_EN.transpose() * (harmonics_ ? harmonics_->b_E_T(r_E) : field_.b_E_T(r_E));
+  out.b_N_T = from_nodes ? extrapolatedField(t_s) : fieldAt(r_N, jd);
   out.orbit_normal_N_unit = r_N.cross(state.v_N_m_s).normalized();
   out.r_N_m = r_N;
   out.v_N_m_s = state.v_N_m_s;

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 #pragma once
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -27,6 +28,9 @@ struct ReferenceModelParams {
   /// [nT] when set, the onboard field model is this spherical-harmonic model (IGRF, WMM)
   /// instead of the dipole: seed S0 needs the field's direction to better than a degree.
   std::optional<sim::GaussCoefficients> field_harmonics;
+  /// [s] the field model is evaluated at t = j·field_node_s only and extrapolated
+  /// in between from the newest three (0..10; 0: at every step). See ReferenceModel.
+  double field_node_s = 1.0;
   std::vector<std::string> validate() const;
 };
 
@@ -38,17 +42,48 @@ struct ReferenceVectors {
   Eigen::Vector3d v_N_m_s = Eigen::Vector3d::Zero();      // [m/s] onboard velocity, inertial
 };
 
+/// Onboard reference vectors at a time.
+///
+/// The field model is the costly part (a degree-13 synthesis was half of the
+/// estimator's step, issue 10), and flight software commonly runs it slower
+/// than the filter. It is evaluated at the nodes t_j = j·h (h = field_node_s)
+/// and the value at t in [t_j, t_j+1) is the quadratic through the nodes
+/// j−2, j−1, j, extrapolated (Lagrange; only past nodes, so the onboard orbit is
+/// still asked in increasing time). Its error is at most h³·max|b⃛| for
+/// τ = (t − t_j)/h < 1 (the remainder b⃛(ξ)/3! · τ(τ+1)(τ+2) h³). Along a low
+/// orbit the inertial field turns at about twice the orbit rate, so
+/// |b⃛| ≈ (2n)³|b| and at h = 1 s the relative error is about 1e-8
+/// (tests/unit/components/ReferenceModelTest.cpp bounds it against the exact model).
+/// Without three consecutive nodes (the start, a jump in time) it evaluates exactly.
 class ReferenceModel {
  public:
   using Params = ReferenceModelParams;
   explicit ReferenceModel(const Params& params);
-  void reset() { orbit_.reset(); }
+  void reset() {
+    orbit_.reset();
+    nodes_ = 0;
+  }
   /// Times must not decrease (the onboard propagator integrates forward).
   ReferenceVectors step(std::int64_t t_ns);
 
  private:
+  /// [T] The model's field at r_N_m [m] (inertial), at the Julian date jd (UTC ≈ UT1).
+  Eigen::Vector3d fieldAt(const Eigen::Vector3d& r_N_m, double jd) const;
+  /// Adds the node of t_s's interval when it is new; whether the three newest
+  /// nodes are consecutive and end there (else the field is evaluated exactly).
+  bool takeNodes(double t_s);
+  /// [T] The field at t_s from the three newest nodes.
+  Eigen::Vector3d extrapolatedField(double t_s) const;
+
   Params params_;
   sim::OrbitTrack orbit_;
+  struct FieldNode {
+    long long index = 0;        // j: at t = j·field_node_s
+    Eigen::Vector3d b_N_T;      // [T]
+  };
+  std::array<FieldNode, 3> node_{};  // the newest last
+  int nodes_ = 0;                    // how many of node_ hold a node
+
   sim::TiltedDipoleField field_;
   std::optional<sim::SphericalHarmonicField> harmonics_;
   double jd_epoch_;  // [d] UTC ≈ UT1
