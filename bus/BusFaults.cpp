@@ -125,9 +125,8 @@ bool BusFaultPlan::actsAt(std::uint64_t step) const {
   return std::any_of(faults_.begin(), faults_.end(), [&](const BusFault& f) { return f.actsAt(timeOf(step)); });
 }
 
-std::optional<std::uint64_t> BusFaultPlan::visibleStamp(std::uint64_t j, std::uint32_t divider) const {
+std::optional<std::uint64_t> BusFaultPlan::faultedStamp(std::uint64_t j, std::uint32_t divider) const {
   std::uint64_t s = j - j % divider;
-  if (empty()) return s;
   const auto before = [&](std::uint64_t step) -> std::optional<std::uint64_t> {  // the grid point before
     if (step < divider) return std::nullopt;
     const std::uint64_t p = step - 1;

@@ -116,10 +116,10 @@ Component::Turn Component::turn() {
     grant = front;
     grants_.pop_front();
   }
-  return handle(grant) ? Turn::kStepped : Turn::kStopped;
+  return handle(grant, true) ? Turn::kStepped : Turn::kStopped;
 }
 
-bool Component::handle(const msg::StepGrant& grant) {
+bool Component::handle(const msg::StepGrant& grant, bool inputs_in) {
   if (grant.stop()) return false;
   const StepContext ctx{grant.header().step(), grant.header().sim_time_ns(),
                         grant.step_period_ns()};
@@ -129,7 +129,7 @@ bool Component::handle(const msg::StepGrant& grant) {
     return true;
   }
   granted_ = ctx.step;
-  if (ctx.step % divider_ == 0 && waitForInputs(ctx.step)) {
+  if (ctx.step % divider_ == 0 && (inputs_in || waitForInputs(ctx.step))) {
     // Claimed before any output of the step can reach the bus, so a process
     // killed mid-step is never followed by one that publishes the step again.
     if (!options_.checkpoint_file.empty()) {

@@ -66,8 +66,9 @@ class Component : public Node {
 
  private:
   void loop();
-  /// One grant: steps when due; false for the stop grant.
-  bool handle(const msg::StepGrant& grant);
+  /// One grant: steps when due; false for the stop grant. inputs_in: the
+  /// caller found every input of the grant's step in already (turn()).
+  bool handle(const msg::StepGrant& grant, bool inputs_in = false);
   msg::StepGrant nextGrant();
   /// --restarted: the state of the checkpoint, if there is a usable one.
   void restoreCheckpoint();

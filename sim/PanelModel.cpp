@@ -55,11 +55,13 @@ double solarFlux_W_m2(double sun_distance_m, double illumination) {
   return kSolarFlux1Au_W_m2 * illumination * au_over_r * au_over_r;
 }
 
-ForceTorque aerodynamicForceTorque(const Panel& panel, double density_kg_m3, const Eigen::Vector3d& wind_B_m_s,
-                                   const Eigen::Vector3d& sun_B_unit) {
-  const double speed = wind_B_m_s.norm();
-  if (!(speed > 0.0) || !(density_kg_m3 > 0.0)) return {};
-  const Eigen::Vector3d w_unit = wind_B_m_s / speed;
+namespace {
+
+// The per-panel parts, with what all panels share (flow speed and direction,
+// radiation pressure) worked out once by the callers: the panel sums run five
+// times a rig step (each RK4 stage and the truth), issue 10.
+ForceTorque aerodynamicOnPanel(const Panel& panel, double density_kg_m3, double speed, const Eigen::Vector3d& w_unit,
+                               const Eigen::Vector3d& sun_B_unit) {
   const Eigen::Vector3d normal = panel.normalFacing(sun_B_unit);
   const double cos_alpha = -normal.dot(w_unit);
   if (cos_alpha <= 0.0) return {};  // the flow reaches only the other side
@@ -69,28 +71,43 @@ ForceTorque aerodynamicForceTorque(const Panel& panel, double density_kg_m3, con
   return ForceTorque{force, panel.r_cp_B_m.cross(force)};
 }
 
-ForceTorque aerodynamicForceTorque(std::span<const Panel> panels, double density_kg_m3,
-                                   const Eigen::Vector3d& wind_B_m_s, const Eigen::Vector3d& sun_B_unit) {
-  ForceTorque total;
-  for (const Panel& panel : panels) total += aerodynamicForceTorque(panel, density_kg_m3, wind_B_m_s, sun_B_unit);
-  return total;
-}
-
-ForceTorque solarPressureForceTorque(const Panel& panel, const Eigen::Vector3d& sun_B_unit, double flux_W_m2) {
+ForceTorque solarPressureOnPanel(const Panel& panel, const Eigen::Vector3d& sun_B_unit, double pressure) {
   const Eigen::Vector3d normal = panel.normalFacing(sun_B_unit);
   const double cos_theta = normal.dot(sun_B_unit);
-  if (cos_theta <= 0.0 || !(flux_W_m2 > 0.0)) return {};
-  const double pressure = flux_W_m2 / kSpeedOfLight_m_s;
+  if (cos_theta <= 0.0) return {};
   const Eigen::Vector3d force =
       -pressure * panel.area_m2 * cos_theta *
       ((1.0 - panel.specular) * sun_B_unit + 2.0 * (panel.specular * cos_theta + panel.diffuse / 3.0) * normal);
   return ForceTorque{force, panel.r_cp_B_m.cross(force)};
 }
 
+}  // namespace
+
+ForceTorque aerodynamicForceTorque(const Panel& panel, double density_kg_m3, const Eigen::Vector3d& wind_B_m_s,
+                                   const Eigen::Vector3d& sun_B_unit) {
+  return aerodynamicForceTorque(std::span<const Panel>(&panel, 1), density_kg_m3, wind_B_m_s, sun_B_unit);
+}
+
+ForceTorque aerodynamicForceTorque(std::span<const Panel> panels, double density_kg_m3,
+                                   const Eigen::Vector3d& wind_B_m_s, const Eigen::Vector3d& sun_B_unit) {
+  const double speed = wind_B_m_s.norm();
+  if (!(speed > 0.0) || !(density_kg_m3 > 0.0)) return {};
+  const Eigen::Vector3d w_unit = wind_B_m_s / speed;
+  ForceTorque total;
+  for (const Panel& panel : panels) total += aerodynamicOnPanel(panel, density_kg_m3, speed, w_unit, sun_B_unit);
+  return total;
+}
+
+ForceTorque solarPressureForceTorque(const Panel& panel, const Eigen::Vector3d& sun_B_unit, double flux_W_m2) {
+  return solarPressureForceTorque(std::span<const Panel>(&panel, 1), sun_B_unit, flux_W_m2);
+}
+
 ForceTorque solarPressureForceTorque(std::span<const Panel> panels, const Eigen::Vector3d& sun_B_unit,
                                      double flux_W_m2) {
+  if (!(flux_W_m2 > 0.0)) return {};
+  const double pressure = flux_W_m2 / kSpeedOfLight_m_s;
   ForceTorque total;
-  for (const Panel& panel : panels) total += solarPressureForceTorque(panel, sun_B_unit, flux_W_m2);
+  for (const Panel& panel : panels) total += solarPressureOnPanel(panel, sun_B_unit, pressure);
   return total;
 }
 
