@@ -10,11 +10,11 @@ Component::Component(Bus& bus, NodeOptions options)
       grant_reader_(bus, topics::kStepGrant,
                     [this](const msg::StepGrant& grant) {
                       {
-                        std::lock_guard lock(mutex_);
+                        const auto lock = lockIfThreaded();
                         if (skip_through_ && grant.header().step() <= *skip_through_ && !grant.stop()) return;
                         grants_.push_back(grant);
                       }
-                      changed_.notify_all();
+                      notify();
                     }),
       done_(bus, topics::kStepDone) {}
 
@@ -108,7 +108,7 @@ void Component::loop() {
 Component::Turn Component::turn() {
   msg::StepGrant grant;
   {
-    std::lock_guard lock(mutex_);
+    const auto lock = lockIfThreaded();
     if (grants_.empty()) return Turn::kIdle;
     const msg::StepGrant& front = grants_.front();
     const std::uint64_t k = front.header().step();

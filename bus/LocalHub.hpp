@@ -24,6 +24,8 @@ namespace flatsat::bus {
 class LocalChannelBase {
  public:
   virtual ~LocalChannelBase() = default;
+  /// No reader joins from now on: writers stop keeping samples for late ones.
+  virtual void seal() = 0;
 };
 
 /// One topic's endpoints in the process.
@@ -47,8 +49,17 @@ class LocalChannel final : public LocalChannelBase {
   /// A deleted writer's history goes with it, as in DDS.
   void removeWriter(std::size_t id) { writers_[id] = {false, {}, 0}; }
 
+  void seal() override {
+    sealed_ = true;
+    for (auto& w : writers_) w.history = {};
+  }
+
   /// Hands the new reader what each live writer still keeps, oldest first.
   std::size_t addReader(const Callback* callback) {
+    if (sealed_) {
+      throw std::logic_error("a reader joined a composed rig after it started: it would miss the samples "
+                             "a transient-local writer keeps for late readers");
+    }
     for (const auto& w : writers_) {
       for (std::size_t i = 0; i < w.history.size(); ++i) {
         (*callback)(w.history[(w.next + i) % w.history.size()]);
@@ -60,7 +71,7 @@ class LocalChannel final : public LocalChannelBase {
   void removeReader(std::size_t id) { readers_[id] = nullptr; }
 
   void write(std::size_t writer, const Sample& sample) {
-    if (depth_ > 0) keep(writers_[writer], sample);
+    if (depth_ > 0 && !sealed_) keep(writers_[writer], sample);
     // By index: a callback may add a reader (the vector grows, never shrinks).
     for (std::size_t i = 0; i < readers_.size(); ++i) {
       if (readers_[i] != nullptr) (*readers_[i])(sample);
@@ -94,6 +105,7 @@ class LocalChannel final : public LocalChannelBase {
   }
 
   std::size_t depth_ = 0;  // [samples] kept per writer for late readers; 0: volatile
+  bool sealed_ = false;    // no late reader can come: nothing kept
   std::vector<WriterSlot> writers_;
   std::vector<const Callback*> readers_;
 };
@@ -117,10 +129,21 @@ class LocalHub {
       throw std::logic_error("topic " + std::string(def.name) + ": already bound to another type than " +
                              typeid(typename Def::Type).name());
     }
+    if (sealed_) typed->seal();
     return *typed;
   }
 
+  /// Every reader of the rig exists (its nodes started): from now on a write
+  /// copies its sample to the readers only, not also into a writer's history
+  /// for late readers, which was a copy of every sample of every step (issue
+  /// 10). A reader created after this throws std::logic_error.
+  void seal() {
+    sealed_ = true;
+    for (auto& [name, channel] : channels_) channel->seal();
+  }
+
  private:
+  bool sealed_ = false;
   std::map<std::string, std::unique_ptr<LocalChannelBase>, std::less<>> channels_;
 };
 

@@ -60,6 +60,11 @@ Recording::Recording(const std::string& path, Access access) : path_(path) {
     return;
   }
   writing_ = true;
+  // 64 KiB pages (SQLite's largest; its default is 4 KiB): the writer appends
+  // a page per pwrite, and with 4 KiB pages its syscalls were most of its time
+  // (strace, default scenario: 71,762 pwrite calls for 200,000 steps). Only a
+  // new file takes it, and only before the journal becomes WAL.
+  exec("PRAGMA page_size=65536");
   // WAL + NORMAL: a committed transaction survives a crash of this process.
   exec("PRAGMA journal_mode=WAL");
   exec("PRAGMA synchronous=NORMAL");
@@ -106,22 +111,24 @@ Recording::~Recording() {
 void Recording::writeBatches() {
   std::unique_lock lock(queue_mutex_);
   for (;;) {
-    writer_changed_.wait(lock, [this] { return handed_ || closing_; });
-    if (!handed_) return;
+    writer_changed_.wait(lock, [this] { return !handed_.empty() || closing_; });
+    if (handed_.empty()) return;
+    Rows& batch = handed_.front();  // stays put while handOver() appends behind it
     lock.unlock();
     std::string failure;
     try {
-      store(batch_);
+      store(batch);
       exec("COMMIT");
       exec("BEGIN");
     } catch (const std::exception& e) {
       failure = e.what();
     }
-    batch_.rows.clear();
-    batch_.bytes.clear();
+    batch.rows.clear();
+    batch.bytes.clear();
     lock.lock();
     if (failure_.empty()) failure_ = failure;
-    handed_ = false;
+    spare_.push_back(std::move(batch));
+    handed_.pop_front();
     writer_changed_.notify_all();
   }
 }
@@ -131,16 +138,20 @@ void Recording::throwIfFailed() const {
 }
 
 void Recording::handOver(std::unique_lock<std::mutex>& lock) {
-  writer_changed_.wait(lock, [this] { return !handed_; });
+  writer_changed_.wait(lock, [this] { return handed_.size() < kBatchesInFlight; });
   throwIfFailed();
-  std::swap(queued_, batch_);
-  handed_ = true;
+  handed_.push_back(std::move(queued_));
+  queued_ = Rows{};
+  if (!spare_.empty()) {
+    queued_ = std::move(spare_.back());
+    spare_.pop_back();
+  }
   writer_changed_.notify_all();
 }
 
 std::unique_lock<std::mutex> Recording::settle() const {
   std::unique_lock lock(queue_mutex_);
-  writer_changed_.wait(lock, [this] { return !handed_; });
+  writer_changed_.wait(lock, [this] { return handed_.empty(); });
   if (!queued_.rows.empty()) {
     store(queued_);
     queued_.rows.clear();
@@ -199,7 +210,7 @@ void Recording::store(const Rows& rows) const {
 void Recording::commit() {
   std::unique_lock lock(queue_mutex_);
   handOver(lock);
-  writer_changed_.wait(lock, [this] { return !handed_; });
+  writer_changed_.wait(lock, [this] { return handed_.empty(); });
   throwIfFailed();
 }
 

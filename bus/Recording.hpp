@@ -2,6 +2,7 @@
 #pragma once
 #include <condition_variable>
 #include <cstdint>
+#include <deque>
 #include <functional>
 #include <map>
 #include <mutex>
@@ -24,7 +25,7 @@ namespace flatsat::bus {
 /// queues the row, and each commit hands the queued rows to that thread.
 /// SQLite's insert was the recorder's whole cost and a tenth of a composed
 /// step (issue 10, callgrind); the writer takes it to the other core. The
-/// connection belongs to the writer while it holds a batch and otherwise to
+/// connection belongs to the writer while it holds batches and otherwise to
 /// the caller; every other call first waits for the writer and then stores
 /// the queued rows itself, so reads see every insert, in arrival order.
 /// A row the writer could not store makes the next insert or commit throw.
@@ -89,7 +90,7 @@ class Recording {
   /// Takes the connection from the writer: waits until it is idle, then
   /// stores the queued rows. The lock keeps the writer idle while it is held.
   std::unique_lock<std::mutex> settle() const;
-  /// Hands the queued rows to the writer (waiting for its batch before); under lock.
+  /// Hands the queued rows to the writer (waiting while kBatchesInFlight wait for it); under lock.
   void handOver(std::unique_lock<std::mutex>& lock);
   void throwIfFailed() const;  ///< under queue_mutex_
   void writeBatches();         ///< the writer thread
@@ -100,9 +101,12 @@ class Recording {
   bool writing_ = false;
   mutable std::mutex queue_mutex_;
   mutable std::condition_variable writer_changed_;
-  mutable Rows queued_;  // inserted, not yet handed to the writer
-  Rows batch_;           // the writer's, while handed_
-  mutable bool handed_ = false;
+  /// A commit that makes SQLite checkpoint its WAL takes the writer tens of
+  /// milliseconds: so many batches may wait for it before a commit waits.
+  static constexpr std::size_t kBatchesInFlight = 16;
+  mutable Rows queued_;         // inserted, not yet handed to the writer
+  std::deque<Rows> handed_;     // the writer's, oldest (the one it writes) first
+  std::vector<Rows> spare_;     // written batches, their buffers kept for reuse
   bool closing_ = false;
   std::string failure_;  // why the writer could not store a batch
   std::thread writer_;

@@ -20,14 +20,14 @@ TimeMaster::TimeMaster(Bus& bus, NodeOptions options, Timing timing)
                      {
                        const auto& source = done.header().source();
                        const std::string_view from(source.data(), std::find(source.begin(), source.end(), '\0') - source.begin());
-                       std::lock_guard lock(mutex_);
+                       const auto lock = lockIfThreaded();
                        for (Awaited& a : awaited_) {
                          if (a.component != from) continue;
                          a.newest_done = std::max(a.newest_done.value_or(0), done.header().step());
                          break;
                        }
                      }
-                     changed_.notify_all();
+                     notify();
                    }),
       health_reader_(bus, topics::kHealth,
                      [this](const msg::Health& health) {

@@ -51,7 +51,12 @@ SphericalHarmonicField::SphericalHarmonicField(const GaussCoefficients& coeffici
   }
 }
 
-Eigen::Vector3d SphericalHarmonicField::synthesize(const Table& g, const Table& h, const GeocentricPosition& p) const {
+SphericalHarmonicField::Direction SphericalHarmonicField::direction(const GeocentricPosition& p) {
+  return {p.radius_m, std::sin(p.latitude_rad), std::cos(p.latitude_rad), std::sin(p.longitude_rad),
+          std::cos(p.longitude_rad)};
+}
+
+Eigen::Vector3d SphericalHarmonicField::synthesize(const Table& g, const Table& h, const Direction& p) const {
   // Potential V = a Σₙ (a/r)^(n+1) Σₘ [gₙᵐ cos mλ + hₙᵐ sin mλ] Pₙᵐ(cos θ), θ the
   // geocentric colatitude, and B = −∇V (Alken et al. 2021, Eq. 1). In geocentric NED:
   //   X′ =  Σₙ (a/r)^(n+2) Σₘ (g cos mλ + h sin mλ) dPₙᵐ/dθ
@@ -64,8 +69,8 @@ Eigen::Vector3d SphericalHarmonicField::synthesize(const Table& g, const Table& 
   // meridian being the one of the longitude given (what the WMM's special pole
   // summation computes).
   const int degree = coefficients_.degree;
-  const double mu = std::sin(p.latitude_rad);     // cos θ
-  const double sin_t = std::cos(p.latitude_rad);  // sin θ ≥ 0
+  const double mu = p.sin_lat;     // cos θ
+  const double sin_t = p.cos_lat;  // sin θ ≥ 0
 
   // Degree recursion (Abramowitz & Stegun 8.5.3, Schmidt-normalised):
   //   √(n² − m²) Pₙᵐ = (2n − 1) cos θ Pₙ₋₁ᵐ − √((n−1)² − m²) Pₙ₋₂ᵐ,
@@ -87,8 +92,8 @@ Eigen::Vector3d SphericalHarmonicField::synthesize(const Table& g, const Table& 
   std::array<double, kMaxDegree + 1> sin_ml;
   cos_ml[0] = 1.0;
   sin_ml[0] = 0.0;
-  cos_ml[1] = std::cos(p.longitude_rad);
-  sin_ml[1] = std::sin(p.longitude_rad);
+  cos_ml[1] = p.cos_lon;
+  sin_ml[1] = p.sin_lon;
   for (int m = 2; m <= degree; ++m) {
     cos_ml[m] = cos_ml[m - 1] * cos_ml[1] - sin_ml[m - 1] * sin_ml[1];
     sin_ml[m] = sin_ml[m - 1] * cos_ml[1] + cos_ml[m - 1] * sin_ml[1];
@@ -118,11 +123,11 @@ Eigen::Vector3d SphericalHarmonicField::synthesize(const Table& g, const Table& 
 }
 
 Eigen::Vector3d SphericalHarmonicField::b_C_nT(const GeocentricPosition& p) const {
-  return synthesize(coefficients_.g_nT, coefficients_.h_nT, p);
+  return synthesize(coefficients_.g_nT, coefficients_.h_nT, direction(p));
 }
 
 Eigen::Vector3d SphericalHarmonicField::bDot_C_nT_yr(const GeocentricPosition& p) const {
-  return synthesize(coefficients_.g_dot_nT_yr, coefficients_.h_dot_nT_yr, p);
+  return synthesize(coefficients_.g_dot_nT_yr, coefficients_.h_dot_nT_yr, direction(p));
 }
 
 Eigen::Vector3d SphericalHarmonicField::b_G_nT(const GeodeticPosition& p) const {
@@ -140,8 +145,17 @@ MagneticElements SphericalHarmonicField::elements(const GeodeticPosition& p) con
 }
 
 Eigen::Vector3d SphericalHarmonicField::b_E_T(const Eigen::Vector3d& r_E_m) const {
-  const GeocentricPosition c = geocentricFromEarthFixed(r_E_m);
-  return 1e-9 * (R_EC(c) * b_C_nT(c));
+  // The geocentric point of geocentricFromEarthFixed() (longitude 0 on the
+  // polar axis) and R_EC() at it, from the coordinates' ratios.
+  const double rho = std::hypot(r_E_m.x(), r_E_m.y());
+  const double r = r_E_m.norm();
+  const Direction d{r, r_E_m.z() / r, rho / r, rho > 0.0 ? r_E_m.y() / rho : 0.0,
+                    rho > 0.0 ? r_E_m.x() / rho : 1.0};
+  const Eigen::Vector3d b_C = synthesize(coefficients_.g_nT, coefficients_.h_nT, d);
+  const double along_rho = -d.sin_lat * b_C.x() - d.cos_lat * b_C.z();  // N and D on the outward equatorial direction
+  return 1e-9 * Eigen::Vector3d(d.cos_lon * along_rho - d.sin_lon * b_C.y(),
+                                d.sin_lon * along_rho + d.cos_lon * b_C.y(),
+                                d.cos_lat * b_C.x() - d.sin_lat * b_C.z());
 }
 
 Eigen::Vector3d SphericalHarmonicField::b_N_T(const Eigen::Vector3d& r_N_m, double jd_ut1) const {

@@ -69,7 +69,14 @@ class SphericalHarmonicField {
 
  private:
   using Table = GaussCoefficients::Table;
-  Eigen::Vector3d synthesize(const Table& g, const Table& h, const GeocentricPosition& p) const;
+  /// A geocentric point by its radius and the sines and cosines of its
+  /// latitude and longitude: from Earth-fixed coordinates they are ratios of
+  /// them, with no atan2 to find the angles and no sin or cos to undo it.
+  struct Direction {
+    double radius_m, sin_lat, cos_lat, sin_lon, cos_lon;
+  };
+  static Direction direction(const GeocentricPosition& p);
+  Eigen::Vector3d synthesize(const Table& g, const Table& h, const Direction& p) const;
 
   GaussCoefficients coefficients_;
   double reference_radius_m_;

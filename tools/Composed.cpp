@@ -97,6 +97,8 @@ class ComposedRig {
     return *buses_.back();
   }
   bus::ComposedScheduler& scheduler() { return *scheduler_; }
+  /// Its nodes started: every reader exists (LocalHub::seal).
+  void seal() { hub_.seal(); }
   std::size_t size() const { return nodes_.size(); }
   /// Closes the recording, for the summary to read.
   void close() {
@@ -147,7 +149,10 @@ LaunchResult runComposed(const bus::Scenario& scenario, const LaunchOptions& opt
     // Spacecraft 0's grants are the run's progress (they all step together).
     progress = std::make_unique<Progress>(rigs.front()->newBus(scenario, "flatsat-launcher"), options.progress);
     spdlog::info("composed {} spacecraft of {} components on one thread", count, rigs.front()->size());
-    for (current = 0; current < count; ++current) rigs[current]->scheduler().start();
+    for (current = 0; current < count; ++current) {
+      rigs[current]->scheduler().start();
+      rigs[current]->seal();
+    }
     const auto stepping = Clock::now();
     // The spacecraft do not meet, so each may run a block of steps before
     // the next one takes its turn: its nodes, models and recording stay in

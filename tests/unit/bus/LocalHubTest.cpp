@@ -87,6 +87,26 @@ TEST_CASE("a reader created later gets what a transient-local writer keeps, as i
   CHECK(after.matchedWriters() == 0);
 }
 
+TEST_CASE("a sealed hub keeps nothing for late readers and refuses one", "[bus][local]") {
+  bus::LocalHub hub;
+  bus::Bus bus(options("x"), hub);
+  bus::WriterOf<topics::kHealth> state(bus, topics::kHealth);
+  std::vector<std::uint64_t> seen;
+  bus::ReaderOf<topics::kHealth> reader(bus, topics::kHealth, [&](const msg::Health& h) { seen.push_back(h.steps_done()); });
+  hub.seal();
+  for (std::uint64_t i = 1; i <= 3; ++i) state.write(health("x", i));
+  CHECK(seen == std::vector<std::uint64_t>{1, 2, 3});  // delivery goes on
+  const auto late = [&] {
+    bus::ReaderOf<topics::kHealth> r(bus, topics::kHealth, [](const msg::Health&) {});
+  };
+  CHECK_THROWS_WITH(late(), Catch::Contains("after it started"));
+  // A topic first used after the seal is sealed too.
+  const auto late_command_reader = [&] {
+    bus::ReaderOf<topics::kFaultCmd> r(bus, topics::kFaultCmd, [](const msg::FaultCmd&) {});
+  };
+  CHECK_THROWS_WITH(late_command_reader(), Catch::Contains("after it started"));
+}
+
 TEST_CASE("an in-process bus has no DDS participant and says so", "[bus][local]") {
   bus::LocalHub hub;
   bus::Bus bus(options("x"), hub);
