@@ -86,6 +86,7 @@ class Component : public Node {
   ReaderOf<topics::kStepGrant> grant_reader_;
   WriterOf<topics::kStepDone> done_;
   std::uint64_t steps_done_ = 0;
+  std::uint64_t lockstep_grants_ = 0;  // handled, for the heartbeat's clock reads
   std::optional<std::uint64_t> granted_;  // the newest step granted
   std::string status_ = "stepping";
 };

@@ -128,7 +128,14 @@ class Input final : public InputBase {
   /// The producer's newest sample due at or before step k. In lockstep the
   /// node waited for the one stamped k - k mod (producer divider); paced, it
   /// may be older (stale). Throws NodeFailure when there is none.
-  Sample at(std::uint64_t k) const;
+  Sample at(std::uint64_t k) const {
+    return with(k, [](const Sample& sample) { return sample; });
+  }
+  /// f(at(k)) without copying the sample out (a truth state is a kilobyte,
+  /// read by every emulator every step). f runs under the input's lock: it
+  /// must neither block nor publish.
+  template <class F>
+  auto with(std::uint64_t k, F&& f) const;
   /// As at(k), but nothing (instead of a throw) when no sample is due yet.
   std::optional<Sample> atIfAny(std::uint64_t k) const;
   /// As atIfAny(k), but only the sample due at step k: nothing when the input
@@ -396,8 +403,15 @@ bool Input<Def>::resent(const Sample& sample) const {
 }
 
 template <class Def>
-typename Input<Def>::Sample Input<Def>::at(std::uint64_t k) const {
-  if (auto sample = atIfAny(k)) return *sample;
+template <class F>
+auto Input<Def>::with(std::uint64_t k, F&& f) const {
+  const auto stamp = due(k) ? stampFor(k) : std::nullopt;
+  {
+    std::lock_guard lock(mutex_);
+    if (auto it = stamp ? samples_.upper_bound(*stamp) : samples_.begin(); it != samples_.begin()) {
+      return f(std::prev(it)->second);
+    }
+  }
   throw NodeFailure("no sample on " + topicName() + " at or before step " + std::to_string(k) +
                     (faults_ != nullptr && !faults_->empty() ? " (a bus fault dropped or delayed every one so far)" : ""));
 }

@@ -39,7 +39,7 @@ class EmulatorNode final : public bus::Component {
  private:
   void step(const bus::StepContext& ctx) override {
     fault_port_.take(ctx, [this](const SensorFault& fault) { return faults_.add(fault); });
-    Output out = model_.step(toInput(truth_.at(ctx.step)), ctx.sim_time_ns);
+    Output out = model_.step(truth_.with(ctx.step, toInput), ctx.sim_time_ns);
     const auto result = faults_.apply(out.*measured, ctx.sim_time_ns);
     fault_port_.publishEvents(result.active, faults_.count(),
                               [this](int i) -> const SensorFault& { return faults_.fault(i); }, ctx);

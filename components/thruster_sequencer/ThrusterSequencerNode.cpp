@@ -149,7 +149,7 @@ void ThrusterSequencerNode::step(const bus::StepContext& ctx) {
     message = toMessage(dumping_->step(last_speed_rad_s_, ctx.sim_time_ns));
   } else {
     if (const auto plan = plan_->at(ctx.step); plan.plan_count() > 0) firings_->plan(plan.plan_step(), scheduled(plan));
-    const Eigen::Vector3d r = bus::vec3(truth_->at(ctx.step).r_inertial_m());
+    const Eigen::Vector3d r = truth_->with(ctx.step, [](const msg::TruthState& t) { return bus::vec3(t.r_inertial_m()); });
     const StationKeepingFiringsOutput out = firings_->step(std::atan2(r.y(), r.x()));
     bus::put(message.on_time_s(), out.on_time_s);
     if (gimbal_dumping_) {
