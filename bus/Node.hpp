@@ -319,7 +319,7 @@ class Node {
   std::vector<std::unique_ptr<InputBase>> inputs_;
   std::vector<std::unique_ptr<OutputBase>> outputs_;
   WriterOf<topics::kHealth> health_;
-  /// Asserts the health writer's liveliness every third of kHealthLease while the
+  /// Asserts the health writer's liveliness every sixth of kHealthLease while the
   /// process lives, whatever its step thread does (waits, long steps); none in process.
   std::jthread liveliness_;
 

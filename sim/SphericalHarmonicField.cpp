@@ -72,22 +72,6 @@ Eigen::Vector3d SphericalHarmonicField::synthesize(const Table& g, const Table& 
   const double mu = p.sin_lat;     // cos θ
   const double sin_t = p.cos_lat;  // sin θ ≥ 0
 
-  // Degree recursion (Abramowitz & Stegun 8.5.3, Schmidt-normalised):
-  //   √(n² − m²) Pₙᵐ = (2n − 1) cos θ Pₙ₋₁ᵐ − √((n−1)² − m²) Pₙ₋₂ᵐ,
-  // started from P₀⁰ = 1 and the sectoral Qₘᵐ = √(1 − 1/(2m)) sin θ Qₘ₋₁ᵐ⁻¹, Q₁¹ = 1.
-  std::array<double, kMaxDegree + 1> p0;  // Pₙ⁰
-  Table q;                                // q[n][m] = Qₙᵐ, m ≥ 1, n ≥ m − 1
-  p0[0] = 1.0;
-  p0[1] = mu;
-  for (int n = 2; n <= degree; ++n) p0[n] = recursion_a_[n][0] * mu * p0[n - 1] - recursion_b_[n][0] * p0[n - 2];
-  for (int m = 1; m <= degree; ++m) {
-    q[m - 1][m] = 0.0;
-    q[m][m] = m == 1 ? 1.0 : sectoral_[m] * sin_t * q[m - 1][m - 1];
-    for (int n = m + 1; n <= degree; ++n) {
-      q[n][m] = recursion_a_[n][m] * mu * q[n - 1][m] - recursion_b_[n][m] * q[n - 2][m];
-    }
-  }
-
   std::array<double, kMaxDegree + 1> cos_ml;
   std::array<double, kMaxDegree + 1> sin_ml;
   cos_ml[0] = 1.0;
@@ -99,10 +83,32 @@ Eigen::Vector3d SphericalHarmonicField::synthesize(const Table& g, const Table& 
     sin_ml[m] = sin_ml[m - 1] * cos_ml[1] + cos_ml[m - 1] * sin_ml[1];
   }
 
+  // Degree recursion (Abramowitz & Stegun 8.5.3, Schmidt-normalised):
+  //   √(n² − m²) Pₙᵐ = (2n − 1) cos θ Pₙ₋₁ᵐ − √((n−1)² − m²) Pₙ₋₂ᵐ,
+  // started from P₀⁰ = 1 and the sectoral Qₘᵐ = √(1 − 1/(2m)) sin θ Qₘ₋₁ᵐ⁻¹, Q₁¹ = 1.
+  // The recursions run degree by degree, every order of a degree from the two
+  // degrees before: the orders are independent of each other, so the
+  // processor overlaps them (order by order, each was a chain of dependent
+  // multiplications, and the synthesis waited on it; issue 10). Each Qₙᵐ is
+  // the same product as before, and the sums are in the same order.
+  std::array<double, kMaxDegree + 1> p0;  // Pₙ⁰
+  Table q;                                // q[n][m] = Qₙᵐ, m ≥ 1, n ≥ m − 1
+  p0[0] = 1.0;
+  p0[1] = mu;
+  q[0][1] = 0.0;
+  q[1][1] = 1.0;
   const double ratio = reference_radius_m_ / p.radius_m;
   double radial = ratio * ratio;  // (a/r)^(n+2) after the first multiplication
   Eigen::Vector3d b = Eigen::Vector3d::Zero();
   for (int n = 1; n <= degree; ++n) {
+    if (n >= 2) {
+      p0[n] = recursion_a_[n][0] * mu * p0[n - 1] - recursion_b_[n][0] * p0[n - 2];
+      for (int m = 1; m < n; ++m) {
+        q[n][m] = recursion_a_[n][m] * mu * q[n - 1][m] - recursion_b_[n][m] * q[n - 2][m];
+      }
+      q[n - 1][n] = 0.0;
+      q[n][n] = sectoral_[n] * sin_t * q[n - 1][n - 1];
+    }
     radial *= ratio;
     // dPₙ⁰/dθ = −√(n(n+1)/2) Pₙ¹ (A&S 8.5.4 at m = 0 with the Schmidt factors).
     double x = -g[n][0] * zonal_slope_[n] * sin_t * q[n][1];

@@ -159,7 +159,8 @@ TEST_CASE("paced: a component whose steps stop is shown late within its deadline
   std::this_thread::sleep_for(std::chrono::seconds(2));
   // SIGSTOP halts the whole process for 1.8 s: longer than the gyro topic's
   // 1 s deadline and kHealthLate (1.5 s), shorter than the 3 s health lease
-  // less the 1 s between liveliness assertions, so it is late, not lost.
+  // less the 0.5 s between liveliness assertions, so it is late, not lost
+  // (with 1 s between them a loaded machine once made it lost).
   const std::string gyro = "'flatsat-gyr[o] --scenario " + out + "/'";
   REQUIRE(test::runCommand("pkill -STOP -f " + gyro).exit_code == 0);
   std::this_thread::sleep_for(std::chrono::milliseconds(1800));
