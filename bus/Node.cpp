@@ -24,8 +24,8 @@ Node::Node(Bus& bus, NodeOptions options)
         std::unique_lock lock(mutex);
         while (!stop.stop_requested()) {
           health_.assertLiveliness();
-          // Six a lease: a process the scheduler holds back for a while (a
-          // loaded machine, a debugger's short stop) stays alive.
+          // Six times a lease: a process the scheduler holds back for a while
+          // (a loaded machine, a debugger's short stop) stays alive.
           wake.wait_for(lock, stop, kHealthLease / 6, [] { return false; });
         }
       })),

@@ -56,8 +56,11 @@ TimeMaster::TimeMaster(Bus& bus, NodeOptions options, Timing timing)
       bus_fault_events_(bus, topics::kFaultEvent),
       bus_fault_acks_(bus) {
   if (timing.period_ns <= 0) throw NodeFailure(name() + ": step period must be > 0");
-  for (const auto& [component, divider] : options_.schedule) {
-    if (component != name()) awaited_.push_back({component, divider, std::nullopt});
+  {
+    std::lock_guard lock(mutex_);  // the StepDone reader exists already
+    for (const auto& [component, divider] : options_.schedule) {
+      if (component != name()) awaited_.push_back({component, divider, std::nullopt});
+    }
   }
   acknowledgeBusFaults(bus_fault_acks_);
 }
