@@ -88,7 +88,7 @@ void Node::notify() {
   // In process (a composed rig) the samples arrive on the one thread that
   // would wait: nobody can be waiting, and the lock and wake-up were a fifth
   // of the bookkeeping of a composed step (issue 10, callgrind).
-  if (bus_.localHub() != nullptr) return;
+  if (inProcess()) return;
   // Taking the lock orders the change before a waiter's check, so no
   // wake-up is lost between its check and its wait.
   { std::lock_guard lock(mutex_); }

@@ -160,6 +160,8 @@ class Input final : public InputBase {
  private:
   /// Whether anything is due at step k (a lagged input has nothing at step 0).
   bool due(std::uint64_t k) const { return k >= lag_; }
+  /// The newest sample due at or before step k; null when none is. Under mutex_.
+  const Sample* heldAt(std::uint64_t k) const;
   /// The stamp of the sample held at step k: the producer's due one, or under a
   /// bus fault an older one (none: every sample so far dropped or late).
   std::optional<std::uint64_t> stampFor(std::uint64_t k) const {
@@ -290,8 +292,10 @@ class Node {
   /// the lock is left untaken: a lock pair costs an atomic each way, and the
   /// grants and StepDones took a few dozen a step (issue 10).
   std::unique_lock<std::mutex> lockIfThreaded() {
-    return bus_.localHub() == nullptr ? std::unique_lock(mutex_) : std::unique_lock(mutex_, std::defer_lock);
+    return inProcess() ? std::unique_lock(mutex_, std::defer_lock) : std::unique_lock(mutex_);
   }
+  /// On a composed rig's in-process bus: every sample arrives on the stepping thread.
+  bool inProcess() const { return bus_.localHub() != nullptr; }
 
  private:
   template <class Def> friend class Input;
@@ -368,7 +372,7 @@ Input<Def>::Input(Node& node, const Def& def, std::uint32_t producer_divider, Ob
       lag_(lag_steps),
       observer_(std::move(observer)),
       faults_(faults),
-      mutex_(node.bus_.localHub() == nullptr),
+      mutex_(!node.inProcess()),
       reader_(node.bus_, def, [this](const Sample& sample) {
         if (faults_ != nullptr && faults_->dropped(sample.header().step())) return;  // never reached this reader
         if (resent(sample)) return;
@@ -403,14 +407,20 @@ bool Input<Def>::resent(const Sample& sample) const {
 }
 
 template <class Def>
+const typename Input<Def>::Sample* Input<Def>::heldAt(std::uint64_t k) const {
+  if (!due(k)) return nullptr;
+  const auto stamp = stampFor(k);
+  if (!stamp) return nullptr;
+  const auto it = samples_.upper_bound(*stamp);
+  return it == samples_.begin() ? nullptr : &std::prev(it)->second;
+}
+
+template <class Def>
 template <class F>
 auto Input<Def>::with(std::uint64_t k, F&& f) const {
-  const auto stamp = due(k) ? stampFor(k) : std::nullopt;
   {
     std::lock_guard lock(mutex_);
-    if (auto it = stamp ? samples_.upper_bound(*stamp) : samples_.begin(); it != samples_.begin()) {
-      return f(std::prev(it)->second);
-    }
+    if (const Sample* sample = heldAt(k)) return f(*sample);
   }
   throw NodeFailure("no sample on " + topicName() + " at or before step " + std::to_string(k) +
                     (faults_ != nullptr && !faults_->empty() ? " (a bus fault dropped or delayed every one so far)" : ""));
@@ -418,13 +428,9 @@ auto Input<Def>::with(std::uint64_t k, F&& f) const {
 
 template <class Def>
 std::optional<typename Input<Def>::Sample> Input<Def>::atIfAny(std::uint64_t k) const {
-  if (!due(k)) return std::nullopt;
-  const auto stamp = stampFor(k);
-  if (!stamp) return std::nullopt;
   std::lock_guard lock(mutex_);
-  auto it = samples_.upper_bound(*stamp);
-  if (it == samples_.begin()) return std::nullopt;
-  return std::prev(it)->second;
+  if (const Sample* sample = heldAt(k)) return *sample;
+  return std::nullopt;
 }
 
 template <class Def>

@@ -123,8 +123,7 @@ void Recording::writeBatches() {
     } catch (const std::exception& e) {
       failure = e.what();
     }
-    batch.rows.clear();
-    batch.bytes.clear();
+    batch.clear();
     lock.lock();
     if (failure_.empty()) failure_ = failure;
     spare_.push_back(std::move(batch));
@@ -154,8 +153,7 @@ std::unique_lock<std::mutex> Recording::settle() const {
   writer_changed_.wait(lock, [this] { return handed_.empty(); });
   if (!queued_.rows.empty()) {
     store(queued_);
-    queued_.rows.clear();
-    queued_.bytes.clear();
+    queued_.clear();
   }
   return lock;
 }

@@ -83,6 +83,10 @@ class Recording {
     };
     std::vector<Row> rows;
     std::string bytes;
+    void clear() {  // keeps the capacity
+      rows.clear();
+      bytes.clear();
+    }
   };
   void exec(const char* sql) const;
   bool holdsSamples() const;
