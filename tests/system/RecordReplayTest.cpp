@@ -85,8 +85,12 @@ TEST_CASE("record attached to a running rig stores the rig's own recorder's samp
     REQUIRE(std::chrono::steady_clock::now() < deadline);
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
+  // Paced, as a flatsat runs when a tool attaches to it: a lockstep run of
+  // this length is over in well under a second, and on a loaded machine the
+  // tool's discovery of each component took longer than that (CI: nothing
+  // from the gyro, which had exited).
   const auto rig = test::runCommand(test::kFlatsat + " run " + kDefault + " -q --no-plots --out " + run +
-                                    " --set duration_orbits=null --set duration_s=30");
+                                    " --set mode=paced --set duration_orbits=null --set duration_s=8");
   INFO(rig.output);
   REQUIRE(rig.exit_code == 0);
   // It stops by itself once the rig's stop grant came.
@@ -94,23 +98,21 @@ TEST_CASE("record attached to a running rig stores the rig's own recorder's samp
   INFO(test::readFile(log));
   REQUIRE(recorded_exit == 0);
 
-  constexpr std::uint64_t kFinalStep = 300;  // 30 s at 0.1 s
+  constexpr std::uint64_t kFinalStep = 80;  // 8 s at 0.1 s
   for (const std::string topic : {"flatsat/gyro", "flatsat/attitude_estimate"}) {
     CAPTURE(topic);
     const auto own = test::recordedRows(run + "/recording.sqlite", topic);
     const auto got = test::recordedRows(attached, topic);
-    REQUIRE(own.size() == kFinalStep + 1);
-    // However late the tool matched, it has every step from then on (the
-    // writers' 64-step history included), each identical to the rig's.
+    REQUIRE(!own.empty());
+    CHECK(own.rbegin()->first.first == kFinalStep);
+    // However late the tool matched, it has every sample the rig's own
+    // recorder has from its first one on (the writers' 64-step history
+    // included: the tool matched within the run's 8 s), each identical.
     REQUIRE(got.size() >= 64);
-    CHECK(got.rbegin()->first.first == kFinalStep);
-    CHECK(got.rbegin()->first.first - got.begin()->first.first + 1 == got.size());
-    std::size_t identical = 0;
-    for (const auto& [key, bytes] : got) {
-      auto it = own.find(key);
-      identical += it != own.end() && it->second == bytes;
-    }
-    CHECK(identical == got.size());
+    const test::TopicRows own_since(own.lower_bound(got.begin()->first), own.end());
+    CHECK(got.size() == own_since.size());
+    const bool identical = got == own_since;  // (no printing of every payload on failure)
+    CHECK(identical);
   }
   fs::remove_all(run);
   fs::remove(attached);
