@@ -62,7 +62,16 @@ void addInitialPeers(dds::DomainParticipantQos& qos, std::uint32_t domain,
 /// Discovery is unicast to the metatraffic ports of the first participants
 /// of the domain on 127.0.0.1 (RTPS 2.2 §9.6.1.1 port mapping), as ROS 2's
 /// localhost-only mode does, so no multicast is ever sent.
-dds::DomainParticipantQos loopbackQos(std::uint32_t domain, bool shared_memory) {
+/// `acks_over_shm`: the endpoints' own traffic (the acknowledgements a
+/// data-sharing reader sends for every sample it takes, heartbeats, the
+/// samples of peers without data sharing) goes through shared memory, not
+/// UDP loopback. In lockstep that was 80 datagrams a step, and the rig's
+/// system time fell by 30 % without them (issue 10, tcpdump on lo, time).
+/// Paced rigs and the tools keep UDP: processes are killed and stopped there
+/// on purpose, and a peer stopped while it holds a shared-memory port's lock
+/// wedges the others (Fast DDS 2.9.1's 1 s interprocess lock timeout); a
+/// datagram never does.
+dds::DomainParticipantQos loopbackQos(std::uint32_t domain, bool shared_memory, bool acks_over_shm) {
   dds::DomainParticipantQos qos;
   qos.transport().use_builtin_transports = false;
   auto udp = std::make_shared<eprosima::fastdds::rtps::UDPv4TransportDescriptor>();
@@ -76,7 +85,10 @@ dds::DomainParticipantQos loopbackQos(std::uint32_t domain, bool shared_memory) 
   auto& builtin = qos.wire_protocol().builtin;
   builtin.metatrafficMulticastLocatorList.clear();
   builtin.metatrafficUnicastLocatorList.push_back(loopbackLocator(0));
-  qos.wire_protocol().default_unicast_locator_list.push_back(loopbackLocator(0));
+  // Empty, Fast DDS takes every transport's default: shared memory first.
+  if (!(shared_memory && acks_over_shm)) {
+    qos.wire_protocol().default_unicast_locator_list.push_back(loopbackLocator(0));
+  }
   addInitialPeers(qos, domain, {"127.0.0.1"});
   return qos;
 }
@@ -252,7 +264,8 @@ Bus::Bus(const BusOptions& options) : options_(options) {
     throw std::invalid_argument("domain id " + std::to_string(options.domain_id) +
                                 ": must be in 0.." + std::to_string(kMaxDomainId));
   }
-  auto qos = options.profile == NetworkProfile::kLoopback ? loopbackQos(options.domain_id, options.shared_memory)
+  auto qos = options.profile == NetworkProfile::kLoopback
+                 ? loopbackQos(options.domain_id, options.shared_memory, options.acks_over_shm)
              : options.profile == NetworkProfile::kPeers ? peersQos(options.domain_id, options.peers)
              : options.profile == NetworkProfile::kDiscoveryServer
                  ? discoveryServerQos(options.discovery_servers)

@@ -50,6 +50,10 @@ struct BusOptions {
   /// kLoopback: the shared-memory transport and data sharing besides UDP on
   /// 127.0.0.1; false: UDP only (BusNetwork::shared_memory)
   bool shared_memory = true;
+  /// kLoopback with shared_memory: the endpoints' own traffic (acknowledgements,
+  /// heartbeats) through shared memory too, not only data sharing's samples.
+  /// For lockstep rigs, whose processes nobody stops on purpose (bus/Bus.cpp).
+  bool acks_over_shm = false;
 };
 
 /// A process's network from its environment: FLATSAT_PEERS=a,b,... selects

@@ -46,11 +46,6 @@ class Component : public Node {
   /// After the last step, before the STOPPED health: whatever a peer may read
   /// once this component says it stopped (a file on a shared volume) is final here.
   virtual void beforeStopped() {}
-  /// Readers of its own besides the inputs that must match their writers
-  /// before the first step (the recorder's of the grants): the names of those
-  /// that have not, each after a space; empty once all have. Without the wait
-  /// a reader that matches late, on a loaded machine, misses what came before.
-  virtual std::string unmatchedReaders() const { return {}; }
 
   /// State that must survive a restart (paced `--restart`), as JSON; null:
   /// none. Kept in NodeOptions::checkpoint_file after every step it was due.
@@ -59,6 +54,12 @@ class Component : public Node {
   /// restarted process. Throws (nlohmann::json::exception, std::exception)
   /// on a state it cannot use; the component then starts afresh.
   virtual void restoreState(const nlohmann::json& /*state*/) {}
+
+  /// Sees every grant as it arrives, on a middleware thread under the node's
+  /// lock (it must neither block nor publish): the recorder stores them
+  /// from the grants this component steps by, without a second reader (a
+  /// delivery and an acknowledgement a step, issue 10).
+  void observeGrants(std::function<void(const msg::StepGrant&)> observer);
 
   /// What the RUNNING health says from now on ("stepping" until set): a
   /// change is published at once, then repeated by the heartbeat.
@@ -83,6 +84,7 @@ class Component : public Node {
   std::chrono::steady_clock::time_point next_health_;
   std::uint32_t divider_ = 1;  // this component's, from the schedule at start()
   std::deque<msg::StepGrant> grants_;
+  std::function<void(const msg::StepGrant&)> grant_observer_;  // guarded by mutex_
   ReaderOf<topics::kStepGrant> grant_reader_;
   WriterOf<topics::kStepDone> done_;
   std::uint64_t steps_done_ = 0;

@@ -91,7 +91,10 @@ void Node::notify() {
   if (inProcess()) return;
   // Taking the lock orders the change before a waiter's check, so no
   // wake-up is lost between its check and its wait.
-  { std::lock_guard lock(mutex_); }
+  {
+    std::lock_guard lock(mutex_);
+    if (wake_when_ && !wake_when_()) return;
+  }
   changed_.notify_all();
 }
 
@@ -113,6 +116,7 @@ bool Node::waitForInputs(std::uint64_t k) {
                                        : options_.step_timeout);
   auto next_resend = now + kResendAfter;
   std::unique_lock lock(mutex_);
+  const WakeWhen wake(*this, lock, [this, k] { return inputsIn(k); });
   for (;;) {
     const InputBase* missing = nullptr;
     for (const auto& input : inputs_) {

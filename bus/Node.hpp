@@ -265,8 +265,36 @@ class Node {
 
   static bool interrupted();
 
-  /// Wakes the node's waits: call after changing what they look at.
+  /// Wakes the node's waits: call after changing what they look at. While
+  /// a lockstep wait has said what it needs (WakeWhen), only once that holds.
   void notify();
+  /// For one lockstep wait, under mutex_: what must hold before waking the
+  /// waiter does it any good. A wake-up per arriving sample, each finding
+  /// the step still incomplete and sleeping again, made the kernel's task
+  /// switches a fifth of a lockstep rig's CPU (issue 10, perf). The waits
+  /// still poll, so a condition that misses a case costs a poll, not a hang.
+  class WakeWhen {
+   public:
+    /// `lock` holds mutex_ (it may be let go and taken again meanwhile).
+    WakeWhen(Node& node, std::unique_lock<std::mutex>& lock, std::function<bool()> ready)
+        : node_(node), lock_(lock) {
+      if (!node.paced()) node_.wake_when_ = std::move(ready);
+    }
+    ~WakeWhen() {
+      if (lock_.owns_lock()) {
+        node_.wake_when_ = nullptr;
+      } else {  // thrown out of a stretch without the lock
+        std::lock_guard lock(node_.mutex_);
+        node_.wake_when_ = nullptr;
+      }
+    }
+    WakeWhen(const WakeWhen&) = delete;
+    WakeWhen& operator=(const WakeWhen&) = delete;
+
+   private:
+    Node& node_;
+    std::unique_lock<std::mutex>& lock_;
+  };
 
   bool paced() const { return options_.pacing == Pacing::kPaced; }
 
@@ -287,6 +315,7 @@ class Node {
   /// waits; never held while computing or publishing.
   std::mutex mutex_;
   std::condition_variable changed_;
+  std::function<bool()> wake_when_;  ///< set by WakeWhen; under mutex_
   /// mutex_ for bookkeeping that samples reach on middleware threads; in
   /// process (a composed rig) they arrive on the stepping thread itself, and
   /// the lock is left untaken: a lock pair costs an atomic each way, and the

@@ -58,6 +58,7 @@ int runNode(int argc, char** argv, const std::string& default_name, Read&& read,
                        .identity = args.name};
     options.tuning.data_sharing = !args.checkpoint && !args.restarted;  // the launcher may restart it
     useNetwork(options, networkFromEnvironment());
+    options.acks_over_shm = scenario.pacing == Pacing::kLockstep;
     Bus bus(options);
     auto node = make(bus, nodeOptions(scenario, args), params);
     node->run();

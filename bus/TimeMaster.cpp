@@ -126,22 +126,32 @@ void TimeMaster::resendStep(std::uint64_t k, const std::string& missing) {
   grant_.rewriteLast();
 }
 
+bool TimeMaster::Awaited::doneWith(std::uint64_t k) const {
+  return k % divider != 0 || (newest_done && *newest_done >= k);
+}
+
 std::string TimeMaster::notDone(std::uint64_t k) const {
   std::string missing;
   for (const Awaited& a : awaited_) {
-    if (k % a.divider == 0 && !(a.newest_done && *a.newest_done >= k)) missing += " " + a.component;
+    if (!a.doneWith(k)) missing += " " + a.component;
   }
   return missing;
+}
+
+bool TimeMaster::allDone(std::uint64_t k) const {
+  return std::all_of(awaited_.begin(), awaited_.end(), [k](const Awaited& a) { return a.doneWith(k); });
 }
 
 void TimeMaster::waitForDone(std::uint64_t k) {
   {
     std::lock_guard lock(mutex_);
-    if (notDone(k).empty()) return;  // the usual case composed, without a clock read
+    if (allDone(k)) return;  // the usual case composed, without a clock read
   }
   const auto deadline = std::chrono::steady_clock::now() + options_.step_timeout;
   auto next_resend = std::chrono::steady_clock::now() + kResendAfter;
   std::unique_lock lock(mutex_);
+  // Its inputs are waited for next: woken once both are in.
+  const WakeWhen wake(*this, lock, [this, k] { return allDone(k) && inputsIn(k); });
   for (;;) {
     const std::string missing = notDone(k);
     if (missing.empty()) return;

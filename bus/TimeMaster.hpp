@@ -96,9 +96,11 @@ class TimeMaster : public Node {
     std::string component;
     std::uint32_t divider = 1;
     std::optional<std::uint64_t> newest_done;
+    bool doneWith(std::uint64_t k) const;  ///< or not due at k
   };
   std::vector<Awaited> awaited_;
   std::string notDone(std::uint64_t k) const;  ///< " a b" of the components due at k and not done; under mutex_
+  bool allDone(std::uint64_t k) const;         ///< notDone(k) is empty; under mutex_
   std::map<std::string, msg::ComponentState> states_;
   std::map<std::string, std::string> messages_;
   std::set<std::string> lost_;  // components whose liveliness is lost

@@ -58,9 +58,12 @@ constexpr std::array<const char*, 7> kComponents = {
 /// D is even in 10..228, D+1 stays under the port formula's cap (232).
 std::uint32_t benchDomain() { return 10 + static_cast<std::uint32_t>(::getpid()) % 110 * 2; }
 
-/// The rig's default network: loopback UDP + SHM, unicast discovery (bus/Bus.cpp).
+/// The rig's default network as a lockstep rig's components have it:
+/// loopback UDP + SHM, unicast discovery, acknowledgements through shared
+/// memory as well (bus/Bus.cpp).
 bus::BusOptions loopback(std::uint32_t domain, const std::string& name) {
-  return {.domain_id = domain, .profile = bus::NetworkProfile::kLoopback, .participant_name = name};
+  return {.domain_id = domain, .profile = bus::NetworkProfile::kLoopback, .participant_name = name,
+          .acks_over_shm = true};
 }
 
 /// Peer processes: this very flatsat binary with a hidden subcommand. Any

@@ -43,15 +43,14 @@ RecorderNode::RecorderNode(bus::Bus& bus, bus::NodeOptions options, const Record
   acks_ = recordAsItComes(bus, bus::topics::kCommandAck);
   // The grants of steps 0..final, not the closing "stop": it races the
   // recorder's own shutdown, and a recording must not depend on who won.
-  grants_ = std::make_unique<bus::ReaderOf<bus::topics::kStepGrant>>(
-      bus, bus::topics::kStepGrant, [this](const msg::StepGrant& grant) {
-        // A grant sent again after a stall (bus::kResendAfter) is recorded once.
-        if (grant.stop() || !recorded(grant.header().step())) return;
-        if (last_grant_ && grant.header().step() <= *last_grant_) return;
-        last_grant_ = grant.header().step();
-        store(std::string(bus::topics::kStepGrant.name), grant.header(),
-              bus::serialize<std::remove_cvref_t<decltype(bus::topics::kStepGrant)>>(grant));
-      });
+  observeGrants([this](const msg::StepGrant& grant) {
+    // A grant sent again after a stall (bus::kResendAfter) is recorded once.
+    if (grant.stop() || !recorded(grant.header().step())) return;
+    if (last_grant_ && grant.header().step() <= *last_grant_) return;
+    last_grant_ = grant.header().step();
+    store(std::string(bus::topics::kStepGrant.name), grant.header(),
+          bus::serialize<std::remove_cvref_t<decltype(bus::topics::kStepGrant)>>(grant));
+  });
   for (const auto& [key, value] : params.meta) recording_.setMeta(key, value);
   if (const auto after = recording_.meta(bus::meta::kResumeAfterStep); !after.empty()) {
     resume_after_ = std::stoull(after);
@@ -75,12 +74,6 @@ bool RecorderNode::recordedAlready(const std::string& topic, const msg::SampleHe
                  bus::text(header.source()), header.step());
   }
   return true;
-}
-
-std::string RecorderNode::unmatchedReaders() const {
-  // The grants are recorded from step 0: a reader matched after the first
-  // ones leaves the recording without them (replay needs them for its timing).
-  return grants_->matchedWriters() == 0 ? " " + grants_->topicName() + " (its record)" : "";
 }
 
 template <class Def>

@@ -39,7 +39,6 @@ class RecorderNode final : public bus::Component {
   /// Commits the last steps: a launcher on another host summarises the
   /// recording as soon as this recorder reports STOPPED.
   void beforeStopped() override;
-  std::string unmatchedReaders() const override;
   template <class Def>
   void record(const Def& def);
   /// Topics that are not stepped: stored on arrival, never waited for.
@@ -66,8 +65,7 @@ class RecorderNode final : public bus::Component {
   std::unique_ptr<bus::ReaderOf<bus::topics::kUnloadingModeCmd>> mode_commands_;
   std::unique_ptr<bus::ReaderOf<bus::topics::kParamCmd>> param_commands_;
   std::unique_ptr<bus::ReaderOf<bus::topics::kCommandAck>> acks_;
-  std::unique_ptr<bus::ReaderOf<bus::topics::kStepGrant>> grants_;
-  std::optional<std::uint64_t> last_grant_;  // on the grant reader's thread only
+  std::optional<std::uint64_t> last_grant_;  // in the grant observer only
   std::map<std::string, std::uint32_t> producer_dividers_;  // of every recorded stepped topic
   std::optional<std::uint64_t> resume_after_;  // --resume: steps the recording holds already
   std::uint64_t resume_checked_ = 0, resume_mismatches_ = 0;
