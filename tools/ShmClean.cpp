@@ -41,7 +41,9 @@ std::vector<std::string> cleanStaleSharedMemory(std::chrono::seconds min_age) {
   std::error_code ec;
   for (const auto& entry : fs::directory_iterator("/dev/shm", ec)) {
     const auto name = entry.path().filename().string();
-    const bool fastdds = name.rfind("fast_datasharing_", 0) == 0 || name.rfind("fastrtps_", 0) == 0;
+    // sem.fastrtps_*: a transport port's named mutex (a POSIX semaphore, mapped by its users).
+    const bool fastdds = name.rfind("fast_datasharing_", 0) == 0 || name.rfind("fastrtps_", 0) == 0 ||
+                         name.rfind("sem.fastrtps_", 0) == 0;
     if (!fastdds || used.count(name) != 0) continue;
     const auto modified = fs::last_write_time(entry.path(), ec);
     if (ec || now - modified < min_age) continue;

@@ -8,8 +8,8 @@ namespace flatsat::tools {
 
 /// Removes Fast DDS shared-memory files in /dev/shm that no live process
 /// maps: the data-sharing segments (fast_datasharing_*) of killed writers,
-/// which `fastdds shm clean` (2.9) leaves, and the transport segments
-/// (fastrtps_*). Files younger than `min_age` stay: a process of another rig
+/// which `fastdds shm clean` (2.9) leaves, and the transport's segments
+/// (fastrtps_*) and port mutexes (sem.fastrtps_*). Files younger than `min_age` stay: a process of another rig
 /// starting at this moment creates its segments before it maps them, and a
 /// parallel run (ctest -j2) must not lose them. Returns the names removed.
 std::vector<std::string> cleanStaleSharedMemory(std::chrono::seconds min_age);

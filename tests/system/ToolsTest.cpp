@@ -313,3 +313,32 @@ TEST_CASE("plot draws the review figures of a recording as PNG", "[system][tools
   CHECK(fs::exists(fs::path(run) / "plots" / "gnuplot" / "plots.gp"));
   fs::remove_all(run);
 }
+
+TEST_CASE("clean-shm removes the Fast DDS files no process uses, and only those", "[system][tools]") {
+  const std::string tag = "flatsat_test_" + std::to_string(::getpid());
+  const fs::path shm = "/dev/shm";
+  // What a SIGKILLed participant leaves: a transport segment and its port's
+  // named mutex (the shared-memory acknowledgements of a lockstep rig).
+  const fs::path stale_segment = shm / ("fastrtps_" + tag);
+  const fs::path stale_mutex = shm / ("sem.fastrtps_" + tag + "_mutex");
+  const fs::path in_use = shm / ("sem.fastrtps_" + tag + "_open");  // this process holds it open
+  const fs::path foreign = shm / ("not_fastdds_" + tag);
+  // An hour old: the tool runs with a grace that keeps the fresh segments of
+  // the tests running alongside this one.
+  const auto an_hour_ago = fs::file_time_type::clock::now() - std::chrono::hours(1);
+  for (const auto& path : {stale_segment, stale_mutex, in_use, foreign}) {
+    std::ofstream(path) << "x";
+    fs::last_write_time(path, an_hour_ago);
+  }
+  {
+    std::ifstream held(in_use);
+    const auto result = test::runCommand(kFlatsat + " clean-shm --min-age-s 600");
+    INFO(result.output);
+    REQUIRE(result.exit_code == 0);
+    CHECK(!fs::exists(stale_segment));
+    CHECK(!fs::exists(stale_mutex));
+    CHECK(fs::exists(in_use));
+    CHECK(fs::exists(foreign));
+  }
+  for (const auto& path : {stale_segment, stale_mutex, in_use, foreign}) fs::remove(path);
+}
