@@ -320,7 +320,7 @@ bool attempt(const char* key, Measure&& measure) {
 
 }  // namespace
 
-double printMiddlewareBench(bool quick, bool* all_measured) {
+bool printHopBench(bool quick) {
   const auto level = spdlog::get_level();
   spdlog::set_level(spdlog::level::warn);
   std::optional<Hop> hop;
@@ -328,15 +328,25 @@ double printMiddlewareBench(bool quick, bool* all_measured) {
   if (hop) std::printf("hop_us=%.1f\nhop_us_p99=%.1f\n", hop->p50_us, hop->p99_us);
   else std::printf("hop_us=nan\nhop_us_p99=nan\n");
   std::fflush(stdout);
-  double limit = std::numeric_limits<double>::quiet_NaN();
-  if (!attempt("limit_steps_per_s", [&] { limit = measureLimit(quick ? 1000 : 3000); })) {
-    std::printf("limit_steps_per_s=nan\n");
-  } else {
-    std::printf("limit_steps_per_s=%.1f\n", limit);
-  }
-  std::fflush(stdout);
   spdlog::set_level(level);
-  if (all_measured != nullptr) *all_measured = hop.has_value() && std::isfinite(limit);
+  return hop.has_value();
+}
+
+double measureLimitStepsPerSecond(bool quick) {
+  const auto level = spdlog::get_level();
+  spdlog::set_level(spdlog::level::warn);
+  double limit = std::numeric_limits<double>::quiet_NaN();
+  attempt("limit_steps_per_s", [&] { limit = measureLimit(quick ? 1000 : 3000); });
+  spdlog::set_level(level);
+  return limit;
+}
+
+double printMiddlewareBench(bool quick, bool* all_measured) {
+  const bool hop = printHopBench(quick);
+  const double limit = measureLimitStepsPerSecond(quick);
+  std::printf("limit_steps_per_s=%.1f\n", limit);  // nan when it failed
+  std::fflush(stdout);
+  if (all_measured != nullptr) *all_measured = hop && std::isfinite(limit);
   return limit;
 }
 

@@ -20,6 +20,10 @@ namespace flatsat::tools {
 /// Returns limit_steps_per_s (NaN when it failed); `all_measured`, when
 /// given, says whether every figure was.
 double printMiddlewareBench(bool quick, bool* all_measured = nullptr);
+/// Its two parts: prints hop_us and hop_us_p99 (false: not measured) ...
+bool printHopBench(bool quick);
+/// ... and measures limit_steps_per_s once, printing nothing (NaN when it failed).
+double measureLimitStepsPerSecond(bool quick);
 
 /// The hidden subcommands the bench starts as its peer processes:
 ///   bench-echo --domain D   reads truth on D, writes each sample back on D+1

@@ -382,10 +382,36 @@ int fleetBench(RunOptions composed, bool quick) {
 /// [s] simulated time of bench's composed figure, at least.
 constexpr double kComposedBenchSeconds = 20000.0;
 
+/// The median of a few figures (NaN among them sorts last: count it out).
+double median(std::vector<double> values) {
+  std::sort(values.begin(), values.end(), [](double a, double b) { return a < b || (!std::isnan(a) && std::isnan(b)); });
+  return values[values.size() / 2];
+}
+
+/// "a,b,c", one decimal each.
+std::string joined(const std::vector<double>& values) {
+  std::string text;
+  for (const double v : values) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%s%.1f", text.empty() ? "" : ",", v);
+    text += buffer;
+  }
+  return text;
+}
+
+/// Runs of each figure that machine noise moves: pairs of the bare graph and
+/// the rig's lockstep run in turn, and the composed run. On this machine kind
+/// either moved by a quarter from one minute to the next (780 and 1,046
+/// steps/s, the same rig a minute apart), so the figures are medians and the
+/// fraction issue 10 asks for is the medians' ratio.
+constexpr int kRunsPerFigure = 3;
+
 int bench(const std::string& scenario, double duration_s, bool quick) {
   const double paced_s = quick ? 30.0 : 60.0;
+  bus::Scenario loaded;
+  if (!loadChecked(scenario, "", loaded)) return kExitBadInput;
   tools::printPhysicsBench();
-  const double limit_steps_per_s = tools::printMiddlewareBench(quick);
+  tools::printHopBench(quick);
   const std::string out = (fs::temp_directory_path() /
                            ("flatsat-bench-" + std::to_string(::getpid()))).string();
   RunOptions o;
@@ -396,26 +422,36 @@ int bench(const std::string& scenario, double duration_s, bool quick) {
   o.plots = false;
   o.log_level = "warn";
   nlohmann::ordered_json summary;
-  const int rc = run(o, &summary);
+  std::vector<double> limits, locksteps, startups;
+  int rc = 0;
+  for (int i = 0; i < kRunsPerFigure && rc == 0; ++i) {
+    limits.push_back(tools::measureLimitStepsPerSecond(quick));
+    rc = run(o, &summary);
+    if (rc != 0) break;
+    locksteps.push_back(summary["steps_per_second"].get<double>());
+    // Launch (the first component spawned) to the first step granted, as the
+    // launcher's own reader saw the grant.
+    startups.push_back(1e3 * summary["startup_seconds"].get<double>());
+    fs::remove_all(out);
+  }
   if (rc == 0) {
+    const double limit = median(limits);
+    const double lockstep = median(locksteps);
+    std::printf("limit_steps_per_s=%.1f\n", limit);
+    std::printf("limit_steps_per_s_runs=%s\n", joined(limits).c_str());
     std::printf("scenario=%s\n", summary["scenario"].get<std::string>().c_str());
     std::printf("processes=%zu\n", summary["processes"].get<std::size_t>());
     std::printf("steps=%llu\n", summary["steps"].get<unsigned long long>());
-    std::printf("lockstep_steps_per_s=%.1f\n", summary["steps_per_second"].get<double>());
+    std::printf("lockstep_steps_per_s=%.1f\n", lockstep);
+    std::printf("lockstep_steps_per_s_runs=%s\n", joined(locksteps).c_str());
     // Issue 10: the rig should reach >= 0.75 of the bare graph's rate.
-    std::printf("lockstep_fraction_of_limit=%.3f\n",
-                summary["steps_per_second"].get<double>() / limit_steps_per_s);
-    std::printf("speed_factor=%.1f\n", summary["speed_factor"].get<double>());
-    // Launch (the first component spawned) to the first step granted, as the
-    // launcher's own reader saw the grant.
-    std::printf("startup_ms=%.0f\n", 1e3 * summary["startup_seconds"].get<double>());
-    fs::remove_all(out);
+    std::printf("lockstep_fraction_of_limit=%.3f\n", lockstep / limit);
+    std::printf("speed_factor=%.1f\n", lockstep * loaded.step_s);
+    std::printf("startup_ms=%.0f\n", median(startups));
   }
   if (rc != 0) return rc;
   // The same scenario composed into one process, its recording decimated to
   // 1 Hz as 42 writes its output files (issue 10's composed figure).
-  bus::Scenario loaded;
-  if (!loadChecked(scenario, "", loaded)) return kExitBadInput;
   if (!tools::composedProblems(loaded).empty()) {
     std::cerr << "flatsat bench: " << scenario << " cannot run composed; no composed figures\n";
     return pacedBench(scenario, paced_s);
@@ -425,16 +461,20 @@ int bench(const std::string& scenario, double duration_s, bool quick) {
   // At least 20,000 s (200,000 steps, a second or two): 600 s composed is
   // 50 ms of stepping, where the first steps' page faults and a noisy
   // neighbour's moment decide the figure.
+  // Three runs, the median (the figure moved between 11k and 15k within minutes).
   RunOptions composed = o;
   composed.overrides.push_back("duration_s=" + std::to_string(std::max(duration_s, kComposedBenchSeconds)));
-  const int composed_rc = run(composed, &summary);
-  if (composed_rc == 0) {
-    std::printf("composed_steps=%llu\n", summary["steps"].get<unsigned long long>());
-    std::printf("composed_steps_per_s=%.1f\n", summary["steps_per_second"].get<double>());
-    std::printf("composed_speed_factor=%.1f\n", summary["speed_factor"].get<double>());
+  std::vector<double> composed_rates;
+  for (int i = 0; i < kRunsPerFigure; ++i) {
+    if (const int composed_rc = run(composed, &summary); composed_rc != 0) return composed_rc;
+    composed_rates.push_back(summary["steps_per_second"].get<double>());
     fs::remove_all(out);
   }
-  if (composed_rc != 0) return composed_rc;
+  const double composed_rate = median(composed_rates);
+  std::printf("composed_steps=%llu\n", summary["steps"].get<unsigned long long>());
+  std::printf("composed_steps_per_s=%.1f\n", composed_rate);
+  std::printf("composed_steps_per_s_runs=%s\n", joined(composed_rates).c_str());
+  std::printf("composed_speed_factor=%.1f\n", composed_rate * loaded.step_s);
   if (const int rc = fleetBench(o, quick); rc != 0) return rc;
   return pacedBench(scenario, paced_s);
 }
