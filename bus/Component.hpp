@@ -56,7 +56,8 @@ class Component : public Node {
   virtual void restoreState(const nlohmann::json& /*state*/) {}
 
   /// Sees every grant as it arrives, on a middleware thread under the node's
-  /// lock (it must neither block nor publish): the recorder stores them
+  /// lock (it must not publish, nor wait on anything but a short lock of its
+  /// own); set it before the component starts. The recorder stores them
   /// from the grants this component steps by, without a second reader (a
   /// delivery and an acknowledgement a step, issue 10).
   void observeGrants(std::function<void(const msg::StepGrant&)> observer);
