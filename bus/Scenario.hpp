@@ -47,7 +47,7 @@ struct Scenario {
   /// [-] 1..kMaxSpacecraft copies of the rig, spacecraft i on its own bus
   /// (composed: its own in-process hub; else domain_id + i) with seed + i.
   std::uint32_t spacecraft_count = 1;
-  double step_s = 0.1;             ///< [s] base period, 1e-3..10
+  double step_s = 0.1;             ///< [s] base period, 1e-3..600 (paced: ..10)
   double duration_s = 0.0;         ///< [s] run length (or duration_orbits)
   double duration_orbits = 0.0;    ///< [-] run length in orbital periods
   double acquisition_s = 0.0;      ///< [s] metrics ignore pointing before this

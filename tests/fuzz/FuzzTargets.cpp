@@ -46,7 +46,9 @@ void scenario(const std::uint8_t* data, std::size_t size) {
       .write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
   try {
     const auto s = bus::loadScenario(path);
-    require(s.step_s >= 1e-3 && s.step_s <= 10.0, "accepted step_s out of range");
+    // [1 ms, 600 s]; a paced rig's at most 10 s (bus/Scenario.cpp, S3's minute steps).
+    require(s.step_s >= 1e-3 && s.step_s <= 600.0, "accepted step_s out of range");
+    require(s.pacing != bus::Pacing::kPaced || s.step_s <= 10.0, "accepted a paced step_s over 10 s");
     require((s.duration_s > 0) != (s.duration_orbits > 0), "accepted no single duration");
     for (const auto& c : s.components) {
       require(c.rate_divider >= 1 && c.rate_divider <= 1000, "accepted rate_divider out of range");
