@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "tools/McTable.hpp"
+#include "tools/Quantile.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -11,11 +12,6 @@ namespace flatsat::tools {
 namespace {
 
 bool numeric(const nlohmann::ordered_json& value) { return value.is_number() && !value.is_boolean(); }
-
-double nearestRank(const std::vector<double>& sorted, double q) {
-  const auto rank = static_cast<std::size_t>(std::ceil(q * static_cast<double>(sorted.size())));
-  return sorted[std::clamp<std::size_t>(rank, 1, sorted.size()) - 1];
-}
 
 }  // namespace
 

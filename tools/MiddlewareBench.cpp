@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "tools/MiddlewareBench.hpp"
+#include "tools/Quantile.hpp"
 
 #include <signal.h>
 #include <spawn.h>
@@ -106,12 +107,6 @@ class Peers {
   std::vector<pid_t> pids_;
 };
 
-double percentile(std::vector<double> values, double p) {
-  std::sort(values.begin(), values.end());
-  const auto i = static_cast<std::size_t>(std::ceil(p * static_cast<double>(values.size()))) - 1;
-  return values[std::min(i, values.size() - 1)];
-}
-
 struct Hop {
   double p50_us;  ///< [µs] median one-way
   double p99_us;  ///< [µs] 99th percentile one-way
@@ -171,7 +166,7 @@ Hop measureHop(int round_trips) {
   ping.write(sample);
   ping.waitForAcknowledgments(std::chrono::seconds(5));
   peers.join();
-  return {percentile(one_way_us, 0.5), percentile(one_way_us, 0.99)};
+  return {quantile(one_way_us, 0.5), quantile(one_way_us, 0.99)};
 }
 
 int runEcho(std::uint32_t domain) {

@@ -16,6 +16,7 @@
 #include "components/thruster_sequencer/AngleOnlyCase.hpp"
 #include "components/thruster_sequencer/ThrusterSequencerNode.hpp"
 #include "tools/MagneticStudy.hpp"
+#include "tools/Quantile.hpp"
 #include "tools/RunDirectory.hpp"
 #include "tools/S0Study.hpp"
 
@@ -37,13 +38,6 @@ struct StudyOptions {
   double disturbance_Nm = 0.01;
   double duration_s = 1200.0;
 };
-
-/// The q-quantile of the values (nearest rank).
-double quantile(std::vector<double> values, double q) {
-  std::sort(values.begin(), values.end());
-  const auto rank = static_cast<std::size_t>(std::ceil(q * static_cast<double>(values.size())));
-  return values[std::clamp<std::size_t>(rank, 1, values.size()) - 1];
-}
 
 void printRow(const char* what, const std::vector<double>& values) {
   std::printf("  %-18s %10.1f %10.1f %10.1f %10.1f\n", what, quantile(values, 0.0), quantile(values, 0.5),

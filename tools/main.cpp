@@ -24,6 +24,7 @@
 #include "tools/CmdCommand.hpp"
 #include "tools/Composed.hpp"
 #include "tools/Fleet.hpp"
+#include "tools/Quantile.hpp"
 #include "tools/EchoCommand.hpp"
 #include "tools/ExportCommand.hpp"
 #include "tools/HealthCommand.hpp"
@@ -382,12 +383,6 @@ int fleetBench(RunOptions composed, bool quick) {
 /// [s] simulated time of bench's composed figure, at least.
 constexpr double kComposedBenchSeconds = 20000.0;
 
-/// The median of a few figures (NaN among them sorts last: count it out).
-double median(std::vector<double> values) {
-  std::sort(values.begin(), values.end(), [](double a, double b) { return a < b || (!std::isnan(a) && std::isnan(b)); });
-  return values[values.size() / 2];
-}
-
 /// "a,b,c", one decimal each.
 std::string joined(const std::vector<double>& values) {
   std::string text;
@@ -423,33 +418,28 @@ int bench(const std::string& scenario, double duration_s, bool quick) {
   o.log_level = "warn";
   nlohmann::ordered_json summary;
   std::vector<double> limits, locksteps, startups;
-  int rc = 0;
-  for (int i = 0; i < kRunsPerFigure && rc == 0; ++i) {
+  for (int i = 0; i < kRunsPerFigure; ++i) {
     limits.push_back(tools::measureLimitStepsPerSecond(quick));
-    rc = run(o, &summary);
-    if (rc != 0) break;
+    if (const int rc = run(o, &summary); rc != 0) return rc;
     locksteps.push_back(summary["steps_per_second"].get<double>());
     // Launch (the first component spawned) to the first step granted, as the
     // launcher's own reader saw the grant.
     startups.push_back(1e3 * summary["startup_seconds"].get<double>());
     fs::remove_all(out);
   }
-  if (rc == 0) {
-    const double limit = median(limits);
-    const double lockstep = median(locksteps);
-    std::printf("limit_steps_per_s=%.1f\n", limit);
-    std::printf("limit_steps_per_s_runs=%s\n", joined(limits).c_str());
-    std::printf("scenario=%s\n", summary["scenario"].get<std::string>().c_str());
-    std::printf("processes=%zu\n", summary["processes"].get<std::size_t>());
-    std::printf("steps=%llu\n", summary["steps"].get<unsigned long long>());
-    std::printf("lockstep_steps_per_s=%.1f\n", lockstep);
-    std::printf("lockstep_steps_per_s_runs=%s\n", joined(locksteps).c_str());
-    // Issue 10: the rig should reach >= 0.75 of the bare graph's rate.
-    std::printf("lockstep_fraction_of_limit=%.3f\n", lockstep / limit);
-    std::printf("speed_factor=%.1f\n", lockstep * loaded.step_s);
-    std::printf("startup_ms=%.0f\n", median(startups));
-  }
-  if (rc != 0) return rc;
+  const double limit = tools::quantile(limits, 0.5);
+  const double lockstep = tools::quantile(locksteps, 0.5);
+  std::printf("limit_steps_per_s=%.1f\n", limit);
+  std::printf("limit_steps_per_s_runs=%s\n", joined(limits).c_str());
+  std::printf("scenario=%s\n", summary["scenario"].get<std::string>().c_str());
+  std::printf("processes=%zu\n", summary["processes"].get<std::size_t>());
+  std::printf("steps=%llu\n", summary["steps"].get<unsigned long long>());
+  std::printf("lockstep_steps_per_s=%.1f\n", lockstep);
+  std::printf("lockstep_steps_per_s_runs=%s\n", joined(locksteps).c_str());
+  // Issue 10: the rig should reach >= 0.75 of the bare graph's rate.
+  std::printf("lockstep_fraction_of_limit=%.3f\n", lockstep / limit);
+  std::printf("speed_factor=%.1f\n", lockstep * loaded.step_s);
+  std::printf("startup_ms=%.0f\n", tools::quantile(startups, 0.5));
   // The same scenario composed into one process, its recording decimated to
   // 1 Hz as 42 writes its output files (issue 10's composed figure).
   if (!tools::composedProblems(loaded).empty()) {
@@ -460,8 +450,8 @@ int bench(const std::string& scenario, double duration_s, bool quick) {
   o.overrides.push_back(tools::recordOnceASecond(loaded.step_s));
   // At least 20,000 s (200,000 steps, a second or two): 600 s composed is
   // 50 ms of stepping, where the first steps' page faults and a noisy
-  // neighbour's moment decide the figure.
-  // Three runs, the median (the figure moved between 11k and 15k within minutes).
+  // neighbour's moment decide the figure. Three runs, the median (the
+  // figure moved between 11k and 15k within minutes).
   RunOptions composed = o;
   composed.overrides.push_back("duration_s=" + std::to_string(std::max(duration_s, kComposedBenchSeconds)));
   std::vector<double> composed_rates;
@@ -470,7 +460,7 @@ int bench(const std::string& scenario, double duration_s, bool quick) {
     composed_rates.push_back(summary["steps_per_second"].get<double>());
     fs::remove_all(out);
   }
-  const double composed_rate = median(composed_rates);
+  const double composed_rate = tools::quantile(composed_rates, 0.5);
   std::printf("composed_steps=%llu\n", summary["steps"].get<unsigned long long>());
   std::printf("composed_steps_per_s=%.1f\n", composed_rate);
   std::printf("composed_steps_per_s_runs=%s\n", joined(composed_rates).c_str());
