@@ -5,11 +5,11 @@
 // published by the component's own thread at its next step, stamped with
 // the step from which the change applies. Publishing from the step keeps the
 // rule "never publish from under a lock or a listener".
-#include <mutex>
 #include <string>
 #include <vector>
 
 #include "bus/Endpoints.hpp"
+#include "bus/Inbox.hpp"
 #include "bus/Stamp.hpp"
 #include "bus/Topics.hpp"
 
@@ -29,18 +29,12 @@ class CommandAcks {
     setText(ack.command(), command);
     ack.accepted(accepted);
     setText(ack.reason(), reason);
-    std::lock_guard lock(mutex_);
-    queued_.push_back(ack);
+    queued_.push(ack);
   }
 
   /// Publishes what was queued, stamped with this step and `source`.
   void publish(const StepContext& ctx, const std::string& source) {
-    std::vector<msg::CommandAck> acks;
-    {
-      std::lock_guard lock(mutex_);
-      acks.swap(queued_);
-    }
-    for (auto& ack : acks) {
+    for (auto& ack : queued_.takeAll()) {
       ack.header(makeHeader(ctx, source));
       writer_.write(ack);
     }
@@ -48,8 +42,7 @@ class CommandAcks {
 
  private:
   Bus& bus_;
-  std::mutex mutex_;
-  std::vector<msg::CommandAck> queued_;
+  Inbox<msg::CommandAck> queued_;
   WriterOf<topics::kCommandAck> writer_;
 };
 

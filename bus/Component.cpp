@@ -150,7 +150,7 @@ bool Component::handle(const msg::StepGrant& grant, bool inputs_in) {
       }
     }
   }
-  dropInputsBefore(ctx.step);
+  dropInputsAfter(ctx.step);
   reachedStep(ctx.step);
   // Lockstep looks at the clock every 16th step only: a heartbeat a few
   // steps late tells the same, and a composed rig steps faster than the

@@ -7,13 +7,13 @@
 // actuator faults) decides what a fault does; a Fault has kind, channel and
 // magnitude, and toString(kind) names the kind.
 #include <functional>
-#include <mutex>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "bus/CommandAcks.hpp"
 #include "bus/Endpoints.hpp"
+#include "bus/Inbox.hpp"
 #include "bus/Stamp.hpp"
 #include "bus/Topics.hpp"
 
@@ -38,12 +38,7 @@ class FaultPort {
   /// acknowledgements stamped with this step.
   template <class Add>
   void take(const StepContext& ctx, Add&& add) {
-    std::vector<std::pair<Fault, std::uint64_t>> pending;
-    {
-      std::lock_guard lock(mutex_);
-      pending.swap(pending_);
-    }
-    for (const auto& [fault, id] : pending) {
+    for (const auto& [fault, id] : pending_.takeAll()) {
       if (!add(fault)) {
         acks_.queue(id, "fault", false, "fault table full");
       } else {
@@ -82,16 +77,14 @@ class FaultPort {
       acks_.queue(command.command_id(), "fault", false, problems.front());
       return;
     }
-    std::lock_guard lock(mutex_);
-    pending_.push_back({fault, command.command_id()});
+    pending_.push({fault, command.command_id()});
   }
 
   std::string component_;
   Convert convert_;
   WriterOf<topics::kFaultEvent>& events_;
   CommandAcks acks_;
-  std::mutex mutex_;
-  std::vector<std::pair<Fault, std::uint64_t>> pending_;  // received, applied at the next step
+  Inbox<std::pair<Fault, std::uint64_t>> pending_;  // received, applied at the next step
   std::uint32_t last_active_ = 0;
   ReaderOf<topics::kFaultCmd> commands_;  // last: it calls receive() from Fast DDS's thread
 };

@@ -247,7 +247,9 @@ class Node {
   /// Paced: waits at most half a period, then goes on with the newest
   /// samples; returns false when an input has none at all yet.
   bool waitForInputs(std::uint64_t k);
-  void dropInputsBefore(std::uint64_t k);
+  /// Step k is done: drops what the inputs hold that step k + 1 does not use
+  /// (paced: what step k did not use; a stale sample is held from step k on).
+  void dropInputsAfter(std::uint64_t k);
   /// Waits until every output's readers acknowledged all samples.
   void flushOutputs();
   /// Writes every output's last sample again (see TimeMaster::resendStep).

@@ -5,7 +5,6 @@
 // next step, each acknowledged: accepted, or refused with its reason (and then
 // counted in health by CommandAcks).
 #include <functional>
-#include <mutex>
 #include <optional>
 #include <string>
 #include <utility>
@@ -16,6 +15,7 @@
 #include "bus/CommandAcks.hpp"
 #include "bus/Convert.hpp"
 #include "bus/Endpoints.hpp"
+#include "bus/Inbox.hpp"
 
 namespace flatsat::bus {
 
@@ -37,13 +37,8 @@ class ParamCommands {
   /// The changes received since the last call, applied in turn to `current` and each checked
   /// with `validate` (its first problem refuses it); the new parameters when any was accepted.
   std::optional<Params> take(Params current, const Validate& validate, CommandAcks& acks) {
-    std::vector<msg::ParamCmd> pending;
-    {
-      std::lock_guard lock(mutex_);
-      pending.swap(pending_);
-    }
     bool changed = false;
-    for (const auto& command : pending) {
+    for (const auto& command : pending_.takeAll()) {
       const std::string key = text(command.key());
       const Settable* found = nullptr;
       for (const auto& s : settable_) found = s.key == key ? &s : found;
@@ -68,8 +63,7 @@ class ParamCommands {
  private:
   void receive(const msg::ParamCmd& command) {
     if (text(command.target()) != component_) return;
-    std::lock_guard lock(mutex_);
-    pending_.push_back(command);
+    pending_.push(command);
   }
   std::string keys() const {
     std::string list;
@@ -79,8 +73,7 @@ class ParamCommands {
 
   std::string component_;
   std::vector<Settable> settable_;
-  std::mutex mutex_;
-  std::vector<msg::ParamCmd> pending_;  // received, applied at the next step
+  Inbox<msg::ParamCmd> pending_;  // received, applied at the next step
   ReaderOf<topics::kParamCmd> reader_;
 };
 

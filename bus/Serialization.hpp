@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #pragma once
 #include <cstdint>
+#include <cstring>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -11,16 +12,32 @@
 
 namespace flatsat::bus {
 
-/// CDR bytes of a sample, as they travel on the wire (the recording format).
+/// CDR bytes of a sample, as they travel on the wire (the recording format),
+/// into `bytes` (whose capacity is kept from call to call).
 template <class Def>
-std::vector<std::uint8_t> serialize(const typename Def::Type& sample) {
-  typename Def::PubSubType type;
+void serializeInto(const typename Def::Type& sample, std::vector<std::uint8_t>& bytes) {
+  // One type object and payload per thread: constructing them for each
+  // sample (the type allocates and sizes itself, the payload allocates) was
+  // most of what a recorded sample cost the step thread (callgrind, issue 10).
+  thread_local typename Def::PubSubType type;
+  thread_local eprosima::fastrtps::rtps::SerializedPayload_t payload;
   auto* data = const_cast<typename Def::Type*>(&sample);
-  eprosima::fastrtps::rtps::SerializedPayload_t payload(type.getSerializedSizeProvider(data)());
+  const std::uint32_t size = type.getSerializedSizeProvider(data)();
+  if (payload.max_size < size) payload.reserve(size);
+  // CDR skips alignment padding without writing it: zeroed, as in a fresh
+  // payload, so that no byte of an earlier sample reaches the recording.
+  std::memset(payload.data, 0, size);
   if (!type.serialize(data, &payload)) {
     throw std::runtime_error("could not serialize a sample of " + std::string(type.getName()));
   }
-  return {payload.data, payload.data + payload.length};
+  bytes.assign(payload.data, payload.data + payload.length);
+}
+
+template <class Def>
+std::vector<std::uint8_t> serialize(const typename Def::Type& sample) {
+  std::vector<std::uint8_t> bytes;
+  serializeInto<Def>(sample, bytes);
+  return bytes;
 }
 
 /// The sample of those bytes; throws std::runtime_error (never a decoder's

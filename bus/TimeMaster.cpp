@@ -306,7 +306,7 @@ void TimeMaster::endStep(std::uint64_t k) {
     waitForInputs(k);
   }
   advance(context(k));
-  dropInputsBefore(k);
+  dropInputsAfter(k);
   reachedStep(k);
   // Heartbeat (counts stay current); lockstep reads the clock every 16th step, as Component::handle.
   if ((paced() || k % 16 == 0) && std::chrono::steady_clock::now() > next_health_) {

@@ -66,6 +66,7 @@ void DynamicsModel::reset() {
   state_ = body_.makeState(params_.q0_NB, params_.w0_NB_B_rad_s, params_.wheel_speed0_rad_s);
   orbit_.reset();
   env_ = environmentAt(0.0);
+  truth_torques_.reset();
   if (params_.attitude_held) {
     const RigidBodyState held = heldState(env_.orbit, Eigen::Vector3d::Zero());
     state_ = body_.makeState(held.q_NB, held.w_NB_B, params_.wheel_speed0_rad_s);
@@ -90,7 +91,9 @@ void DynamicsModel::step(const ActuatorCommands& cmd, SimTime t_next) {
   const Environment next = environmentAt(t1_s);
   const auto torque_with = [&](const Eigen::Vector3d& dipole_B_Am2) {
     return [&, dipole_B_Am2](double t_s, const RigidBodyState& x) -> Eigen::Vector3d {
-      const Environment env = interpolated(env_, next, (t_s - t0_s) / dt_s);
+      // At the step's start the chord is env_ itself, the truth's environment.
+      Environment between;
+      const Environment& env = t_s == t0_s ? env_ : (between = interpolated(env_, next, (t_s - t0_s) / dt_s));
       return torquesAt(env, x.q_NB, dipole_B_Am2).total_B_Nm() + params_.disturbance_torque_B_Nm +
              applied.thrusters.torque_B_Nm;
     };
@@ -120,6 +123,7 @@ void DynamicsModel::step(const ActuatorCommands& cmd, SimTime t_next) {
   }
   t_ = t_next;
   env_ = next;
+  truth_torques_.reset();
   const Eigen::Vector3d& f_B = applied.thrusters.force_B_N;
   if (params_.orbit_track.propagator == OrbitPropagation::kNumerical && !f_B.isZero(0.0)) {
     const Eigen::Quaterniond q_end = params_.attitude_held ? heldState(env_.orbit, H_held_N_Nms).q_NB : state_.q_NB;
@@ -176,8 +180,7 @@ Eigen::Vector3d DynamicsModel::Torques::total_B_Nm() const {
          solar_pressure.torque_B_Nm;
 }
 
-DynamicsModel::Torques DynamicsModel::torquesAt(const Environment& env, const Eigen::Quaterniond& q_NB,
-                                                const Eigen::Vector3d& dipole_B_Am2) const {
+DynamicsModel::Torques DynamicsModel::attitudeTorquesAt(const Environment& env, const Eigen::Quaterniond& q_NB) const {
   const Eigen::Quaterniond q_BN = q_NB.conjugate();
   Torques torques;
   torques.b_B_T = q_BN * env.b_N_T;
@@ -186,11 +189,19 @@ DynamicsModel::Torques DynamicsModel::torquesAt(const Environment& env, const Ei
   torques.gravity_gradient_B_Nm = params_.gravity_gradient
                                       ? gravityGradientTorque_B_Nm(q_BN * env.orbit.r_N_m, params_.body.J_B_kg_m2)
                                       : Eigen::Vector3d::Zero();
-  torques.magnetic_B_Nm = dipole_B_Am2.cross(torques.b_B_T);
   torques.residual_magnetic_B_Nm = params_.residual_dipole_B_Am2.cross(torques.b_B_T);
   torques.aerodynamic =
       aerodynamicForceTorque(params_.panels, env.density_kg_m3, torques.wind_B_m_s, torques.sun_B_unit);
   torques.solar_pressure = solarPressureForceTorque(params_.panels, torques.sun_B_unit, env.solar_flux_W_m2);
+  return torques;
+}
+
+DynamicsModel::Torques DynamicsModel::torquesAt(const Environment& env, const Eigen::Quaterniond& q_NB,
+                                                const Eigen::Vector3d& dipole_B_Am2) const {
+  // The same inputs, bit for bit, as the truth's: the same sums.
+  const bool at_truth = &env == &env_ && truth_torques_ && truth_torques_->q_NB.coeffs() == q_NB.coeffs();
+  Torques torques = at_truth ? truth_torques_->torques : attitudeTorquesAt(env, q_NB);
+  torques.magnetic_B_Nm = dipole_B_Am2.cross(torques.b_B_T);
   if (flaps_) {
     torques.flaps_aerodynamic = aerodynamicForceTorque(flap_panels_, env.density_kg_m3, torques.wind_B_m_s);
     torques.aerodynamic += torques.flaps_aerodynamic;
@@ -210,6 +221,7 @@ Eigen::Vector3d DynamicsModel::clipDipole(const Eigen::Vector3d& dipole_B_Am2) c
 
 void DynamicsModel::updateTruth(const Applied& applied, double substep_s) {
   const Environment& env = env_;
+  truth_torques_ = AttitudeTorques{state_.q_NB, attitudeTorquesAt(env, state_.q_NB)};
   const Torques torques = torquesAt(env, state_.q_NB, applied.dipole_B_Am2);
 
   Truth& truth = truth_;

@@ -104,6 +104,10 @@ class DynamicsModel {
   /// The chord from a (s = 0) to b (s = 1).
   static Environment interpolated(const Environment& a, const Environment& b, double s);
   Torques torquesAt(const Environment& env, const Eigen::Quaterniond& q_NB, const Eigen::Vector3d& dipole_B_Am2) const;
+  /// The torques that only the attitude and the environment decide: gravity
+  /// gradient, residual dipole, and the body panels' drag and solar pressure
+  /// (not the torquers, not the flaps, whose angles change from step to step).
+  Torques attitudeTorquesAt(const Environment& env, const Eigen::Quaterniond& q_NB) const;
   Eigen::Vector3d clipDipole(const Eigen::Vector3d& dipole_B_Am2) const;
   void setFlaps(const Eigen::Vector4d& flap_angle_rad);
   void updateTruth(const Applied& applied, double substep_s);
@@ -121,6 +125,14 @@ class DynamicsModel {
   SimTime t_ = 0;
   RigidBodyState state_;
   Environment env_;  // at t_
+  /// attitudeTorquesAt(env_, q_NB) of the truth. The next step's first RK4
+  /// stage is at the same attitude and environment: it takes them instead of
+  /// summing the panels again, one evaluation of the five a step (issue 10).
+  struct AttitudeTorques {
+    Eigen::Quaterniond q_NB;
+    Torques torques;
+  };
+  std::optional<AttitudeTorques> truth_torques_;
   Truth truth_;
 };
 

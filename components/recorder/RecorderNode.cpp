@@ -98,7 +98,9 @@ void RecorderNode::record(const Def& def) {
   // k then guarantees they are all in before StepDone(k).
   addTap(def, [this, topic = std::string(def.name)](const typename Def::Type& sample) {
     if (!recorded(sample.header().step())) return;
-    store(topic, sample.header(), bus::serialize<Def>(sample));
+    thread_local std::vector<std::uint8_t> payload;  // its capacity stays: no allocation per sample
+    bus::serializeInto<Def>(sample, payload);
+    store(topic, sample.header(), payload);
   });
   producer_dividers_[std::string(def.name)] = dividerOf(std::string(def.producer));
 }
