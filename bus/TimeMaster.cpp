@@ -6,6 +6,7 @@
 #include <sys/prctl.h>
 
 #include <algorithm>
+#include <cstring>
 #include <string_view>
 
 #include <spdlog/spdlog.h>
@@ -19,7 +20,7 @@ TimeMaster::TimeMaster(Bus& bus, NodeOptions options, Timing timing)
                    [this](const msg::StepDone& done) {
                      {
                        const auto& source = done.header().source();
-                       const std::string_view from(source.data(), std::find(source.begin(), source.end(), '\0') - source.begin());
+                       const std::string_view from(source.data(), ::strnlen(source.data(), source.size()));
                        const auto lock = lockIfThreaded();
                        for (Awaited& a : awaited_) {
                          if (a.component != from) continue;
