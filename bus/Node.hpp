@@ -181,14 +181,13 @@ class Input final : public InputBase {
   bool resent(const Sample& sample) const;
   mutable MutexIfThreaded mutex_;
   StepSamples<Sample> samples_;
-  std::uint64_t consumed_before_ = 0;  ///< steps below this were dropped (dropBefore)
+  std::uint64_t consumed_before_ = 0;  ///< steps below this were dropped (dropBefore) or passed on
   /// A tap in a composed rig holds no sample: every write reaches it inside
   /// the write, so there is nothing to wait for, and holding a copy of every
   /// sample for a wait that never comes cost 1.5k instructions of a 47k
   /// composed step (callgrind, issue 10). It still drops a copy (a bus
-  /// duplicate fault).
+  /// duplicate fault): what it passed on counts as consumed.
   const bool passes_through_;
-  std::optional<std::uint64_t> passed_;  ///< passes_through_: the newest step passed on
   std::uint64_t hold_steps_ = 1;       ///< paced: steps a last sample is held for (the lease)
   Reader<Def> reader_;
 };
@@ -417,8 +416,8 @@ Input<Def>::Input(Node& node, const Def& def, std::uint32_t producer_divider, Ob
         if (faults_ != nullptr && faults_->dropped(sample.header().step())) return;  // never reached this reader
         if (resent(sample)) return;
         if (observer_) observer_(sample);
-        if (passes_through_) {
-          passed_ = sample.header().step();
+        if (passes_through_) {  // in process a topic's one writer delivers in step order
+          consumed_before_ = sample.header().step() + 1;
           return;
         }
         {
@@ -444,9 +443,7 @@ bool Input<Def>::resent(const Sample& sample) const {
   const std::uint64_t step = sample.header().step();
   std::lock_guard lock(mutex_);
   const auto held = samples_.find(step);
-  // In process a topic's one writer delivers in step order.
-  const bool copy = (passes_through_ && passed_ && step <= *passed_) ||
-                    (!node_.paced() && step < consumed_before_) ||
+  const bool copy = (!node_.paced() && step < consumed_before_) ||
                     (held != samples_.end() && text(held->second.header().source()) == text(sample.header().source()));
   if (copy) ++copies_dropped_;
   return copy;

@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
-#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <mutex>
@@ -14,6 +13,7 @@
 #include "bus/Endpoints.hpp"
 #include "bus/Topics.hpp"
 #include "tools/Launcher.hpp"
+#include "tools/Quantile.hpp"
 
 namespace flatsat::tools {
 
@@ -75,12 +75,8 @@ class Progress {
     const double earliest = *std::min_element(offsets_ns.begin(), offsets_ns.end());
     for (auto& o : offsets_ns) o = (o - earliest) * 1e-3;
     std::sort(offsets_ns.begin(), offsets_ns.end());
-    const auto rank = [&](double q) {  // nearest rank
-      const auto r = static_cast<std::size_t>(std::ceil(q * static_cast<double>(offsets_ns.size())));
-      return offsets_ns[std::clamp<std::size_t>(r, 1, offsets_ns.size()) - 1];
-    };
-    j.p50_us = rank(0.50);
-    j.p99_us = rank(0.99);
+    j.p50_us = nearestRank(offsets_ns, 0.50);
+    j.p99_us = nearestRank(offsets_ns, 0.99);
     j.max_us = offsets_ns.back();
     j.ticks = offsets_ns.size();
     const std::uint64_t expected = last_step + 1 - arrivals_.front().first;
