@@ -35,7 +35,7 @@ class CommandAcks {
   /// Publishes what was queued, stamped with this step and `source`.
   void publish(const StepContext& ctx, const std::string& source) {
     for (auto& ack : queued_.takeAll()) {
-      ack.header(makeHeader(ctx, source));
+      stamp(ack.header(), ctx, source);
       writer_.write(ack);
     }
   }

@@ -13,7 +13,8 @@ Component::Component(Bus& bus, NodeOptions options)
                         const auto lock = lockIfThreaded();
                         if (grant_observer_) grant_observer_(grant);
                         if (skip_through_ && grant.header().step() <= *skip_through_ && !grant.stop()) return;
-                        grants_.push_back(grant);
+                        grants_.push_back({grant.header().step(), grant.header().sim_time_ns(),
+                                           grant.step_period_ns(), grant.stop()});
                       }
                       notify();
                     }),
@@ -63,9 +64,7 @@ void Component::skipGrantsThrough(std::uint64_t claimed) {
   std::lock_guard lock(mutex_);
   skip_through_ = claimed;
   // The grants' transient-local history may have come in already.
-  std::erase_if(grants_, [claimed](const msg::StepGrant& grant) {
-    return !grant.stop() && grant.header().step() <= claimed;
-  });
+  std::erase_if(grants_, [claimed](const Grant& grant) { return !grant.stop && grant.step <= claimed; });
   spdlog::info("{}: restarted: steps only grants after step {}, the newest its earlier process began", name(),
                claimed);
 }
@@ -107,23 +106,20 @@ void Component::loop() {
 }
 
 Component::Turn Component::turn() {
-  msg::StepGrant grant;
+  Grant grant;
   {
     const auto lock = lockIfThreaded();
     if (grants_.empty()) return Turn::kIdle;
-    const msg::StepGrant& front = grants_.front();
-    const std::uint64_t k = front.header().step();
-    if (!front.stop() && k % divider_ == 0 && !inputsIn(k)) return Turn::kBlocked;
-    grant = front;
+    grant = grants_.front();
+    if (!grant.stop && grant.step % divider_ == 0 && !inputsIn(grant.step)) return Turn::kBlocked;
     grants_.pop_front();
   }
   return handle(grant, true) ? Turn::kStepped : Turn::kStopped;
 }
 
-bool Component::handle(const msg::StepGrant& grant, bool inputs_in) {
-  if (grant.stop()) return false;
-  const StepContext ctx{grant.header().step(), grant.header().sim_time_ns(),
-                        grant.step_period_ns()};
+bool Component::handle(const Grant& grant, bool inputs_in) {
+  if (grant.stop) return false;
+  const StepContext ctx{grant.step, grant.sim_time_ns, grant.period_ns};
   if (granted_ && ctx.step <= *granted_) {  // granted again after a stall (kResendAfter)
     rewriteOutputs();
     done_.rewriteLast();
@@ -139,7 +135,7 @@ bool Component::handle(const msg::StepGrant& grant, bool inputs_in) {
     }
     step(ctx);
     msg::StepDone done;
-    done.header(makeHeader(ctx, name()));
+    stamp(done.header(), ctx, name());
     done_.write(done);
     ++steps_done_;
     if (!options_.checkpoint_file.empty()) {
@@ -173,17 +169,16 @@ void Component::setStatus(const std::string& status) {
   publishHealth(msg::ComponentState::RUNNING, steps_done_, status_);
 }
 
-msg::StepGrant Component::nextGrant() {
+Component::Grant Component::nextGrant() {
   const auto deadline = std::chrono::steady_clock::now() + options_.step_timeout;
   std::unique_lock lock(mutex_);
   // Woken once the work of a grant can be done: its inputs are in, or it is
   // the stop. Grants it is not due for wait for the next one it is: nobody
   // waits for those (a 1 Hz controller of a 10 Hz rig woke every step).
   const WakeWhen wake(*this, lock, [this] {
-    for (const msg::StepGrant& grant : grants_) {
-      const std::uint64_t k = grant.header().step();
-      if (grant.stop()) return true;
-      if (k % divider_ == 0) return inputsIn(k);
+    for (const Grant& grant : grants_) {
+      if (grant.stop) return true;
+      if (grant.step % divider_ == 0) return inputsIn(grant.step);
     }
     return false;
   });
@@ -197,11 +192,11 @@ msg::StepGrant Component::nextGrant() {
   }
   // Paced, a component that fell behind skips to the newest grant: the
   // wall clock does not wait, so old steps are not worth computing.
-  while (paced() && grants_.size() > 1 && !grants_.front().stop()) {
+  while (paced() && grants_.size() > 1 && !grants_.front().stop) {
     grants_.pop_front();
     ++overruns_;
   }
-  const msg::StepGrant grant = grants_.front();
+  const Grant grant = grants_.front();
   grants_.pop_front();
   return grant;
 }

@@ -58,7 +58,7 @@ class FaultPort {
       if (now == before) continue;
       const Fault& fault = faultAt(i);
       msg::FaultEvent event;
-      event.header(makeHeader(ctx, component_));
+      stamp(event.header(), ctx, component_);
       setText(event.kind(), toString(fault.kind));
       event.channel(fault.channel);
       event.magnitude(fault.magnitude);

@@ -259,7 +259,7 @@ void TimeMaster::publishFaultEvents(const StepContext& ctx) {
   }
   for (const auto& [component, kind, active] : component_events) {
     msg::FaultEvent event;
-    event.header(makeHeader(ctx, component));
+    stamp(event.header(), ctx, component);
     setText(event.kind(), kind);
     setText(event.topic(), topics::kHealth.name);
     event.channel(-1);
@@ -274,7 +274,7 @@ void TimeMaster::publishFaultEvents(const StepContext& ctx) {
       if (now == before) continue;
       before = now;
       msg::FaultEvent event;
-      event.header(makeHeader(ctx, std::string(kBusFaultTarget)));
+      stamp(event.header(), ctx, std::string(kBusFaultTarget));
       setText(event.kind(), toString(faults[i].kind));
       setText(event.topic(), topic);
       event.channel(-1);
@@ -293,7 +293,7 @@ void TimeMaster::beginStep(std::uint64_t k) {
   publishFaultEvents(ctx);
   publishStep(ctx);
   msg::StepGrant grant;
-  grant.header(makeHeader(ctx, name()));
+  stamp(grant.header(), ctx, name());
   grant.step_period_ns(timing_.period_ns);
   grant.final_step(timing_.final_step);
   grant_.write(grant);
@@ -325,7 +325,7 @@ void TimeMaster::addToHealth(msg::Health& health) const {
 
 void TimeMaster::stop() {
   msg::StepGrant stop;
-  stop.header(makeHeader(context(timing_.final_step + 1), name()));
+  stamp(stop.header(), context(timing_.final_step + 1), name());
   stop.step_period_ns(timing_.period_ns);
   stop.final_step(timing_.final_step);
   stop.stop(true);

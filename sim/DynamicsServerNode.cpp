@@ -12,7 +12,7 @@ using bus::put;
 msg::TruthState toMessage(const Truth& truth, int wheel_count, const bus::StepContext& ctx,
                           const std::string& source) {
   msg::TruthState m;
-  m.header(bus::makeHeader(ctx, source));
+  bus::stamp(m.header(), ctx, source);
   put(m.q_inertial_body(), truth.q_NB);
   put(m.w_body_rad_s(), truth.w_NB_B_rad_s);
   m.wheel_count(static_cast<std::uint32_t>(wheel_count));

@@ -204,7 +204,8 @@ LaunchResult launch(const bus::Scenario& scenario, const LaunchOptions& options)
                               .identity = bus::kOperatorIdentity};
   bus::useNetwork(bus_options, bus::networkFromEnvironment());
   bus::Bus bus(bus_options);
-  Progress progress(bus, options.progress, scenario.pacing == bus::Pacing::kPaced);
+  const bool paced = scenario.pacing == bus::Pacing::kPaced;
+  Progress progress(bus, options.progress, paced, paced ? Progress::Follow::kGrants : Progress::Follow::kMasterHealth);
 
   const auto start = Clock::now();
   Externals externals(bus, scenario, start);
@@ -253,8 +254,8 @@ LaunchResult launch(const bus::Scenario& scenario, const LaunchOptions& options)
                  options.max_restarts);
     msg::FaultEvent event;
     const std::uint64_t step = progress.steps();
-    event.header(bus::makeHeader({step, static_cast<std::int64_t>(step) * std::llround(scenario.step_s * 1e9), 0},
-                                 c.name));
+    bus::stamp(event.header(), {step, static_cast<std::int64_t>(step) * std::llround(scenario.step_s * 1e9), 0},
+               c.name);
     bus::setText(event.kind(), "restarted");
     event.channel(-1);
     event.magnitude(n);
@@ -329,6 +330,7 @@ LaunchResult launch(const bus::Scenario& scenario, const LaunchOptions& options)
     if (result.failure.empty()) result.failure = externals.failure();
     if (!result.failure.empty() || bus::shutdownRequested()) break;
     externals.report();
+    progress.poll();
     if (Clock::now() >= next_print) {
       progress.print(false);
       next_print += std::chrono::milliseconds(500);

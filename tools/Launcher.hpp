@@ -39,7 +39,7 @@ struct LaunchResult {
   bool ok = false;
   std::string failure;          ///< which component failed and how
   double launch_seconds = 0.0;  ///< [s] wall time from spawn to the last exit
-  double step_seconds = 0.0;    ///< [s] wall time from the first to the last step
+  double step_seconds = 0.0;    ///< [s] wall time from the first step to the last (lockstep processes: to the time master's STOPPED health)
   double startup_seconds = 0.0; ///< [s] wall time from launch() to the first step granted
   std::uint64_t steps = 0;      ///< [-] steps granted
   std::size_t processes = 0;

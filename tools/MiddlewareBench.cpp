@@ -132,7 +132,7 @@ Hop measureHop(int round_trips) {
     changed.notify_one();
   });
   msg::TruthState sample;  // fixed-size fields: every sample has the rig's truth size
-  sample.header(bus::makeHeader({}, "bench-ping"));
+  bus::stamp(sample.header(), {}, "bench-ping");
   // Writes ping k until its echo is back. A ping is written again after
   // kRewriteAfter without an echo: right after discovery a sample can sit
   // unseen in a data-sharing segment until the next one (the rig's
@@ -226,7 +226,7 @@ class Relay final : public bus::Component {
  private:
   void step(const bus::StepContext& ctx) override {
     typename std::remove_cvref_t<decltype(Out)>::Type sample;
-    sample.header(bus::makeHeader(ctx, name()));
+    bus::stamp(sample.header(), ctx, name());
     out_.write(sample);
   }
   bus::WriterOf<Out>& out_ = addOutput(Out);
@@ -248,7 +248,7 @@ class BareMaster final : public bus::TimeMaster {
  private:
   void publishStep(const bus::StepContext& ctx) override {
     msg::TruthState truth;
-    truth.header(bus::makeHeader(ctx, name()));
+    bus::stamp(truth.header(), ctx, name());
     truth_.write(truth);
   }
   void advance(const bus::StepContext& ctx) override {

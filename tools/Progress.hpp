@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
+#include <memory>
 #include <mutex>
 #include <vector>
 
@@ -22,21 +23,30 @@ namespace flatsat::tools {
 /// with `keep_arrivals` (paced runs) also when each grant arrived.
 class Progress {
  public:
-  Progress(bus::Bus& bus, bool show, bool keep_arrivals = false)
+  /// What follows the steps once the first grant came.
+  enum class Follow {
+    kGrants,  ///< every grant (paced jitter, or in process where a grant costs nothing)
+    /// The time master's health (kHealthPeriod): a lockstep rig of processes. A
+    /// reader of every grant was one more delivery a step, and with it a
+    /// wake-up of this process and an acknowledgement: 3 % of the rig's CPU
+    /// (perf, issue 10). Its last health (STOPPED, every step done) times the end.
+    kMasterHealth,
+  };
+  Progress(bus::Bus& bus, bool show, bool keep_arrivals = false, Follow follow = Follow::kGrants)
       : show_(show), terminal_(::isatty(STDERR_FILENO) == 1), keep_arrivals_(keep_arrivals),
-        reader_(bus, bus::topics::kStepGrant, [this](const msg::StepGrant& g) {
-          if (g.stop()) return;
-          const auto now = std::chrono::steady_clock::now();
-          if (keep_arrivals_) {
-            const std::lock_guard lock(arrivals_mutex_);
-            arrivals_.emplace_back(g.header().step(), now);
-          }
-          if (steps_.load() == 0) first_ = now;
-          last_ = now;
-          final_step_ = g.final_step();
-          period_ns_ = g.step_period_ns();
-          steps_.store(g.header().step() + 1);
-        }) {}
+        grants_(std::make_unique<bus::ReaderOf<bus::topics::kStepGrant>>(
+            bus, bus::topics::kStepGrant, [this](const msg::StepGrant& g) { granted(g); })) {
+    if (follow == Follow::kMasterHealth) {
+      master_health_ = std::make_unique<bus::ReaderOf<bus::topics::kHealth>>(
+          bus, bus::topics::kHealth, [this](const msg::Health& h) { masterReported(h); });
+    }
+  }
+
+  /// Following the master's health: drops the grant reader once it saw the
+  /// first grant (call from the launcher's loop, not a middleware thread).
+  void poll() {
+    if (master_health_ && grants_ && steps_.load() > 0) grants_.reset();
+  }
 
   void print(bool done) {
     if (!show_) return;
@@ -98,12 +108,37 @@ class Progress {
   bool keep_arrivals_;
   mutable std::mutex arrivals_mutex_;
   std::vector<std::pair<std::uint64_t, std::chrono::steady_clock::time_point>> arrivals_;
+  void granted(const msg::StepGrant& g) {
+    if (g.stop()) return;
+    const auto now = std::chrono::steady_clock::now();
+    if (keep_arrivals_) {
+      const std::lock_guard lock(arrivals_mutex_);
+      arrivals_.emplace_back(g.header().step(), now);
+    }
+    if (steps_.load() == 0) first_ = now;
+    last_ = now;
+    final_step_ = g.final_step();
+    period_ns_ = g.step_period_ns();
+    steps_.store(g.header().step() + 1);
+  }
+  void masterReported(const msg::Health& h) {
+    if (bus::text(h.header().source()) != bus::topics::kStepGrant.producer) return;
+    if (h.state() != msg::ComponentState::RUNNING && h.state() != msg::ComponentState::STOPPED) return;
+    // Before the first grant nothing is timed yet; a grant may still be newer.
+    const std::uint64_t steps = steps_.load();
+    if (steps == 0 || h.steps_done() < steps) return;
+    last_ = std::chrono::steady_clock::now();
+    steps_.store(h.steps_done());
+  }
+
   int last_tenth_ = -1;
   std::atomic<std::uint64_t> steps_{0};
   std::atomic<std::chrono::steady_clock::time_point> first_{}, last_{};
   std::atomic<std::uint64_t> final_step_{0};
   std::atomic<std::int64_t> period_ns_{0};
-  bus::ReaderOf<bus::topics::kStepGrant> reader_;
+  // Last: their callbacks use everything above, from middleware threads.
+  std::unique_ptr<bus::ReaderOf<bus::topics::kHealth>> master_health_;
+  std::unique_ptr<bus::ReaderOf<bus::topics::kStepGrant>> grants_;
 };
 
 }  // namespace flatsat::tools

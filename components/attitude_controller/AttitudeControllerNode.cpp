@@ -65,7 +65,7 @@ void AttitudeControllerNode::step(const bus::StepContext& ctx) {
     out = controller_.step(toInput(estimate, used), ctx.sim_time_ns);
   }
   auto message = toMessage(out);
-  message.header(bus::makeHeader(ctx, name()));
+  bus::stamp(message.header(), ctx, name());
   command_.write(message);
 }
 

@@ -45,7 +45,7 @@ class EmulatorNode final : public bus::Component {
                               [this](int i) -> const SensorFault& { return faults_.fault(i); }, ctx);
     auto message = toMessage(out);
     message.valid(message.valid() && result.valid);
-    message.header(bus::makeHeader(ctx, name()));
+    bus::stamp(message.header(), ctx, name());
     output_.write(message);
   }
 

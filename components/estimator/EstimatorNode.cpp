@@ -138,7 +138,7 @@ void EstimatorNode::stepS0(const bus::StepContext& ctx, const msg::GyroReading& 
   const auto out = s0_->step(in, ctx.sim_time_ns);
 
   msg::CoilRequest request;
-  request.header(bus::makeHeader(ctx, name()));
+  bus::stamp(request.header(), ctx, name());
   if (out.request) {
     request.request_id(out.request->id);
     bus::put(request.m_body_Am2(), out.request->m_B_Am2);
@@ -150,7 +150,7 @@ void EstimatorNode::stepS0(const bus::StepContext& ctx, const msg::GyroReading& 
   coil_request_.write(request);
 
   msg::FieldEstimate field;
-  field.header(bus::makeHeader(ctx, name()));
+  bus::stamp(field.header(), ctx, name());
   bus::put(field.b_body_T(), out.b_B_T);
   field.valid(out.valid);
   field.roll_rad(out.alpha_rad);
@@ -235,10 +235,10 @@ void EstimatorNode::step(const bus::StepContext& ctx) {
     stepS0(ctx, gyro, v.sun_B_unit, v.sun_valid, reference);
   } else {
     msg::CoilRequest none;
-    none.header(bus::makeHeader(ctx, name()));
+    bus::stamp(none.header(), ctx, name());
     coil_request_.write(none);
     msg::FieldEstimate invalid;
-    invalid.header(bus::makeHeader(ctx, name()));
+    bus::stamp(invalid.header(), ctx, name());
     field_estimate_.write(invalid);
   }
 
@@ -279,7 +279,7 @@ void EstimatorNode::step(const bus::StepContext& ctx) {
     in.b_N_ref_T = reference.b_N_T;
     message = toMessage(mahony_->step(in, ctx.sim_time_ns));
   }
-  message.header(bus::makeHeader(ctx, name()));
+  bus::stamp(message.header(), ctx, name());
   estimate_.write(message);
 
   // The status text is built only when a sensor's state changes: building it

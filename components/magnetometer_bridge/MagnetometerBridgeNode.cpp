@@ -64,7 +64,7 @@ void MagnetometerBridgeNode::run() {
       const auto step = stepNow();
       if (!step) continue;  // the rig has not started stepping: no time to stamp it with
       msg::MagnetometerReading reading;
-      reading.header(bus::makeHeader(*step, name()));
+      bus::stamp(reading.header(), *step, name());
       bus::put(reading.b_body_T(), out.b_B_T);
       reading.saturated(out.saturated);
       reading.valid(true);

@@ -113,7 +113,7 @@ void RecorderNode::recordDeliveries(const bus::StepContext& ctx) {
     const auto held = plan->visibleStamp(ctx.step, divider->second);
     if (!plan->actsAt(due) && held == due) continue;
     msg::BusDelivery row;
-    row.header(bus::makeHeader(ctx, name()));
+    bus::stamp(row.header(), ctx, name());
     bus::setText(row.topic(), topic);
     row.sample_step(held ? static_cast<std::int64_t>(*held) : -1);
     row.dropped(plan->dropped(due));

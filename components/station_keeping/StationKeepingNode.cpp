@@ -110,7 +110,7 @@ void StationKeepingNode::step(const bus::StepContext& ctx) {
   message.failure(static_cast<std::uint8_t>(failure));
   message.plan_count(plan_count_);
   message.plan_step(plan_step_);
-  message.header(bus::makeHeader(ctx, name()));
+  bus::stamp(message.header(), ctx, name());
   plan_out_.write(message);
 }
 

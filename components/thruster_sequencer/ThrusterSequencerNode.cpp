@@ -162,7 +162,7 @@ void ThrusterSequencerNode::step(const bus::StepContext& ctx) {
     }
   }
   message.thruster_count(static_cast<std::uint32_t>(thruster_count_));
-  message.header(bus::makeHeader(ctx, name()));
+  bus::stamp(message.header(), ctx, name());
   command_.write(message);
 }
 

@@ -214,10 +214,10 @@ void UnloadingControllerNode::step(const bus::StepContext& ctx) {
   message.active(out.active && !coils.window_active);
   // A requested window (seed S0) is a known dipole over known times: never shortened.
   message.quiet_fraction(coils.window_active ? 0.0 : quiet_fraction_);
-  message.header(bus::makeHeader(ctx, name()));
+  bus::stamp(message.header(), ctx, name());
   command_.write(message);
   auto window = toMessage(coils.report);
-  window.header(bus::makeHeader(ctx, name()));
+  bus::stamp(window.header(), ctx, name());
   coil_window_.write(window);
   publishFlaps(ctx, in, out);
 }
@@ -247,7 +247,7 @@ void UnloadingControllerNode::publishFlaps(const bus::StepContext& ctx, const Ma
   }
   bus::put(m.b_body_T(), in.b_B_T);
   m.flap_scale_Nm(in.flap_scale_Nm);
-  m.header(bus::makeHeader(ctx, name()));
+  bus::stamp(m.header(), ctx, name());
   flap_cmd_.write(m);
 }
 

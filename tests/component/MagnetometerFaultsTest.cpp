@@ -40,12 +40,12 @@ class Script final : public bus::TimeMaster {
  private:
   void publishStep(const bus::StepContext& ctx) override {
     msg::TruthState truth;
-    truth.header(bus::makeHeader(ctx, "dynamics_server"));
+    bus::stamp(truth.header(), ctx, "dynamics_server");
     bus::put(truth.b_body_T(), fieldAt(ctx.step));
     truth_.write(truth);
     if (ctx.step == 5) {  // a bias on x over steps 10..14, commanded on the bus
       msg::FaultCmd command;
-      command.header(bus::makeHeader(ctx, "test"));
+      bus::stamp(command.header(), ctx, "test");
       bus::setText(command.target(), "magnetometer");
       bus::setText(command.kind(), "bias");
       command.channel(0);

@@ -36,7 +36,7 @@ class Script final : public bus::TimeMaster {
  private:
   void publishStep(const bus::StepContext& ctx) override {
     msg::TruthState truth;
-    truth.header(bus::makeHeader(ctx, "dynamics_server"));
+    bus::stamp(truth.header(), ctx, "dynamics_server");
     bus::put(truth.b_body_T(), fieldAt(ctx.step));
     truth_.write(truth);
   }

@@ -72,7 +72,7 @@ TEST_CASE("a bridge overrides its emulator while alive, killed, readers fall bac
   std::thread emulate([&] {
     for (std::uint64_t k = 0; running; ++k) {
       msg::MagnetometerReading reading;
-      reading.header(bus::makeHeader({k, 0, 0}, "magnetometer"));
+      bus::stamp(reading.header(), {k, 0, 0}, "magnetometer");
       emulator.write(reading);
       std::this_thread::sleep_for(std::chrono::milliseconds(50));
     }

@@ -72,7 +72,7 @@ TEST_CASE("a step granted again is written again, and an input passes each sampl
   const auto grant = [&](std::uint64_t k, bool stop) {
     const bus::StepContext ctx{k, static_cast<std::int64_t>(k) * kPeriodNs, kPeriodNs};
     msg::StepGrant g;
-    g.header(bus::makeHeader(ctx, "dynamics_server"));
+    bus::stamp(g.header(), ctx, "dynamics_server");
     g.step_period_ns(kPeriodNs);
     g.final_step(0);
     g.stop(stop);
@@ -87,7 +87,7 @@ TEST_CASE("a step granted again is written again, and an input passes each sampl
   // node's lock under Fast DDS's reader lock, the reverse of the node's own order).
   REQUIRE(test::within(20, [&] { return ready.load(); }));
   msg::TruthState state;
-  state.header(bus::makeHeader({0, 0, kPeriodNs}, "dynamics_server"));
+  bus::stamp(state.header(), {0, 0, kPeriodNs}, "dynamics_server");
   bus::put(state.b_body_T(), Eigen::Vector3d(2e-5, -1e-5, 3e-5));
   truth.write(state);
 

@@ -31,7 +31,7 @@ class ScriptedPeers final : public bus::TimeMaster {
  private:
   void publishStep(const bus::StepContext& ctx) override {
     msg::SunSensorReading sun;
-    sun.header(bus::makeHeader(ctx, "sun_sensor"));
+    bus::stamp(sun.header(), ctx, "sun_sensor");
     // Body turned by +θ about y sees the Sun at (cos θ, 0, sin θ).
     bus::put(sun.sun_body_unit(), Eigen::Vector3d(std::cos(kAngle), 0.0, std::sin(kAngle)));
     sun.valid(true);

@@ -55,7 +55,7 @@ class ScriptedPeers final : public bus::TimeMaster {
     for (const auto& change : changes_) {
       if (change.step != ctx.step) continue;
       msg::ParamCmd command;
-      command.header(bus::makeHeader(ctx, "operator"));
+      bus::stamp(command.header(), ctx, "operator");
       command.command_id(change.id);
       bus::setText(command.target(), "unloading_controller");
       bus::setText(command.key(), change.key);
@@ -64,17 +64,17 @@ class ScriptedPeers final : public bus::TimeMaster {
     }
     if (detumble_at_ == ctx.step) {
       msg::ModeCmd command;
-      command.header(bus::makeHeader(ctx, "operator"));
+      bus::stamp(command.header(), ctx, "operator");
       command.mode(msg::MAGNETIC_DETUMBLE);
       mode_.write(command);
     }
     msg::WheelTachReading tach;
-    tach.header(bus::makeHeader(ctx, "wheel_tach"));
+    bus::stamp(tach.header(), ctx, "wheel_tach");
     bus::put(tach.wheel_speed_rad_s(), speedsAt(ctx.step));
     tach.valid(true);
     tach_.write(tach);
     msg::MagnetometerReading field;
-    field.header(bus::makeHeader(ctx, "magnetometer"));
+    bus::stamp(field.header(), ctx, "magnetometer");
     bus::put(field.b_body_T(), fieldAt(ctx.step));
     field.valid(true);
     field_.write(field);

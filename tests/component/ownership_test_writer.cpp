@@ -24,7 +24,7 @@ int main(int argc, char** argv) {
   bus::WriterOf<bus::topics::kMagnetometer> writer(bus, bus::topics::kMagnetometer);
   for (std::uint64_t k = 0;; ++k) {
     msg::MagnetometerReading reading;
-    reading.header(bus::makeHeader({k, static_cast<std::int64_t>(k) * 50'000'000, 50'000'000}, argv[3]));
+    bus::stamp(reading.header(), {k, static_cast<std::int64_t>(k) * 50'000'000, 50'000'000}, argv[3]);
     reading.valid(true);
     writer.write(reading);
     std::this_thread::sleep_for(std::chrono::milliseconds(50));

@@ -128,7 +128,7 @@ class Master final : public bus::TimeMaster {
  private:
   void publishStep(const bus::StepContext& ctx) override {
     msg::TruthState truth;
-    truth.header(bus::makeHeader(ctx, name()));
+    bus::stamp(truth.header(), ctx, name());
     truth_.write(truth);
   }
   void advance(const bus::StepContext& ctx) override {
@@ -149,7 +149,7 @@ class Relay final : public bus::Component {
   void step(const bus::StepContext& ctx) override {
     seen.push_back(in_.at(ctx.step).header().step());
     typename std::remove_cvref_t<decltype(Out)>::Type sample;
-    sample.header(bus::makeHeader(ctx, name()));
+    bus::stamp(sample.header(), ctx, name());
     out_.write(sample);
   }
   bus::InputOf<In>& in_ = addInput(In);
