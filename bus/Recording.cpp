@@ -178,16 +178,21 @@ void Recording::insert(const std::string& topic, std::uint64_t step, const std::
   if (!writing_) throw std::logic_error(path_ + ": opened for reading, not for inserting");
   std::lock_guard lock(queue_mutex_);
   throwIfFailed();
-  auto append = [this](const void* data, std::size_t size) {
-    const std::size_t at = queued_.bytes.size();
-    queued_.bytes.append(static_cast<const char*>(data), size);
+  queued_.add(topic, step, source, sim_time_ns,
+              {reinterpret_cast<const char*>(payload.data()), payload.size()});
+}
+
+void Recording::Rows::add(std::string_view topic, std::uint64_t step, std::string_view source,
+                          std::int64_t sim_time_ns, std::string_view payload) {
+  auto append = [this](std::string_view data) {
+    const std::size_t at = bytes.size();
+    bytes.append(data);
     return at;
   };
-  const std::size_t topic_at = append(topic.data(), topic.size());
-  const std::size_t source_at = append(source.data(), source.size());
-  const std::size_t payload_at = append(payload.data(), payload.size());
-  queued_.rows.push_back(
-      {topic_at, topic.size(), source_at, source.size(), payload_at, payload.size(), step, sim_time_ns});
+  const std::size_t topic_at = append(topic);
+  const std::size_t source_at = append(source);
+  const std::size_t payload_at = append(payload);
+  rows.push_back({topic_at, topic.size(), source_at, source.size(), payload_at, payload.size(), step, sim_time_ns});
 }
 
 void Recording::store(const Rows& rows) const {
@@ -215,6 +220,24 @@ void Recording::commit() {
 void Recording::commitInBackground() {
   std::unique_lock lock(queue_mutex_);
   handOver(lock);
+}
+
+void Recording::commitInBackgroundThrough(std::uint64_t step) {
+  std::unique_lock lock(queue_mutex_);
+  // Copied out before the hand-over: the writer clears a batch it stored
+  // without the lock. The rows kept point into bytes that stay as they are.
+  Rows later;
+  std::size_t kept = 0;
+  for (const Rows::Row& row : queued_.rows) {
+    if (row.step <= step) {
+      queued_.rows[kept++] = row;
+    } else {
+      later.add(queued_, row);
+    }
+  }
+  queued_.rows.resize(kept);
+  handOver(lock);
+  for (const Rows::Row& row : later.rows) queued_.add(later, row);
 }
 
 void Recording::setMeta(const std::string& key, const std::string& value) {

@@ -9,6 +9,7 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <string_view>
 #include <thread>
 #include <vector>
 
@@ -45,6 +46,12 @@ class Recording {
   /// The same commit on the writer's thread; returns at once unless the
   /// writer is still busy with the commit before.
   void commitInBackground();
+  /// commitInBackground() of the rows stamped at or before `step` only: the
+  /// later ones stay queued, in their order, for the next commit. A lockstep
+  /// recorder trailing the rig (bus::TimeMaster::kSinkTrailSteps) holds
+  /// samples of steps it has not reached yet; a crash then still leaves a
+  /// recording that ends at a step boundary.
+  void commitInBackgroundThrough(std::uint64_t step);
   void setMeta(const std::string& key, const std::string& value);
   std::string meta(const std::string& key) const;
 
@@ -86,6 +93,14 @@ class Recording {
     void clear() {  // keeps the capacity
       rows.clear();
       bytes.clear();
+    }
+    void add(std::string_view topic, std::uint64_t step, std::string_view source, std::int64_t sim_time_ns,
+             std::string_view payload);
+    /// Adds `row` of `from` (another Rows).
+    void add(const Rows& from, const Row& row) {
+      const char* b = from.bytes.data();
+      add({b + row.topic, row.topic_size}, row.step, {b + row.source, row.source_size}, row.sim_time_ns,
+          {b + row.payload, row.payload_size});
     }
   };
   void exec(const char* sql) const;

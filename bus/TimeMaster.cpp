@@ -60,7 +60,13 @@ TimeMaster::TimeMaster(Bus& bus, NodeOptions options, Timing timing)
   {
     std::lock_guard lock(mutex_);  // the StepDone reader exists already
     for (const auto& [component, divider] : options_.schedule) {
-      if (component != name()) awaited_.push_back({component, divider, std::nullopt});
+      if (component == name()) continue;
+      bool publishes_stepped = false;
+      const std::string& producer = component;  // a structured binding is not captured (clang 14)
+      forEachTopic([&](const auto& def) {
+        publishes_stepped = publishes_stepped || (def.qos == QosKind::kStepped && def.producer == producer);
+      });
+      awaited_.push_back({component, divider, publishes_stepped ? 0 : kSinkTrailSteps, std::nullopt});
     }
   }
   acknowledgeBusFaults(bus_fault_acks_);
@@ -127,20 +133,22 @@ void TimeMaster::resendStep(std::uint64_t k, const std::string& missing) {
   grant_.rewriteLast();
 }
 
-bool TimeMaster::Awaited::doneWith(std::uint64_t k) const {
-  return k % divider != 0 || (newest_done && *newest_done >= k);
+bool TimeMaster::Awaited::doneWith(std::uint64_t k, bool last) const {
+  const std::uint64_t needed = last ? k : (k > trail_steps ? k - trail_steps : 0);
+  return needed % divider != 0 || (newest_done && *newest_done >= needed);
 }
 
 std::string TimeMaster::notDone(std::uint64_t k) const {
   std::string missing;
   for (const Awaited& a : awaited_) {
-    if (!a.doneWith(k)) missing += " " + a.component;
+    if (!a.doneWith(k, k >= timing_.final_step)) missing += " " + a.component;
   }
   return missing;
 }
 
 bool TimeMaster::allDone(std::uint64_t k) const {
-  return std::all_of(awaited_.begin(), awaited_.end(), [k](const Awaited& a) { return a.doneWith(k); });
+  const bool last = k >= timing_.final_step;
+  return std::all_of(awaited_.begin(), awaited_.end(), [k, last](const Awaited& a) { return a.doneWith(k, last); });
 }
 
 void TimeMaster::waitForDone(std::uint64_t k) {

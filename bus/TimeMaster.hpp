@@ -95,9 +95,24 @@ class TimeMaster : public Node {
   struct Awaited {
     std::string component;
     std::uint32_t divider = 1;
+    /// [steps] How far its StepDone may trail the step being closed: 0, or
+    /// kSinkTrailSteps for a sink.
+    std::uint64_t trail_steps = 0;
     std::optional<std::uint64_t> newest_done;
-    bool doneWith(std::uint64_t k) const;  ///< or not due at k
+    /// Done with what closing step k needs (or not due); `last`: k is the
+    /// final step, which nobody may trail.
+    bool doneWith(std::uint64_t k, bool last) const;
   };
+  /// A sink (a component that publishes no stepped topic: the recorder) may
+  /// report StepDone(k) up to this many steps after the master closed k. No
+  /// step waits on a sink's data, and its samples wait in its readers
+  /// (reliable, 64 deep) and are stored by step; the recorder commits only
+  /// whole steps (Recording::commitInBackgroundThrough). Its StepDone was one
+  /// more hop at the end of every step's chain, and its work on a step can
+  /// now overlap the next step's (issue 10). Step 0 and the final step are
+  /// waited for in full: a sample a late-matched reader missed shows at
+  /// step 0, where the master's resend brings it (kResendAfter).
+  static constexpr std::uint64_t kSinkTrailSteps = 8;
   std::vector<Awaited> awaited_;
   std::string notDone(std::uint64_t k) const;  ///< " a b" of the components due at k and not done; under mutex_
   bool allDone(std::uint64_t k) const;         ///< notDone(k) is empty; under mutex_

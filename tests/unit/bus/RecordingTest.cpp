@@ -2,6 +2,7 @@
 #include <catch2/catch.hpp>
 
 #include <filesystem>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include "bus/Recording.hpp"
@@ -136,4 +137,54 @@ TEST_CASE("A recording's writer thread keeps arrival order and hides nothing fro
   std::filesystem::remove(path);
   std::filesystem::remove(path.string() + "-wal");
   std::filesystem::remove(path.string() + "-shm");
+}
+
+TEST_CASE("A commit through a step leaves the later rows to the next commit, in their order", "[recording]") {
+  const auto path = std::filesystem::temp_directory_path() /
+                    ("flatsat-recording-through-" + std::to_string(::getpid()) + ".sqlite");
+  const auto removeAll = [&] {
+    std::filesystem::remove(path);
+    std::filesystem::remove(path.string() + "-wal");
+    std::filesystem::remove(path.string() + "-shm");
+  };
+  const auto insertSteps = [](Recording& r, std::uint64_t first, std::uint64_t last) {
+    for (std::uint64_t step = first; step <= last; ++step) {
+      r.insert("t", step, "a", 0, {static_cast<std::uint8_t>(step)});
+      r.insert("u", step, "b", 0, {1});
+    }
+  };
+  removeAll();
+  // A recorder trailing the rig holds samples of steps 5..7 when it commits
+  // through step 4, and is then killed: its recording ends at step 4.
+  const pid_t child = ::fork();
+  if (child == 0) {
+    Recording writer(path.string(), Recording::Access::kCreate);
+    insertSteps(writer, 0, 7);
+    writer.commitInBackgroundThrough(4);
+    (void)writer.meta("none");  // waits for the writer; steps 5..7 go into the open transaction
+    ::_exit(0);
+  }
+  int status = 0;
+  REQUIRE(::waitpid(child, &status, 0) == child);
+  REQUIRE(WIFEXITED(status));
+  {
+    const Recording crashed(path.string(), Recording::Access::kRead);
+    CHECK(crashed.count("t") == 5);
+    CHECK(crashed.count("u") == 5);
+    CHECK(crashed.lastStep("t") == 4u);
+  }
+  removeAll();
+  {
+    Recording writer(path.string(), Recording::Access::kCreate);
+    insertSteps(writer, 0, 7);
+    writer.commitInBackgroundThrough(4);
+    insertSteps(writer, 8, 9);
+    writer.commit();
+  }
+  const Recording r(path.string(), Recording::Access::kRead);
+  const auto seen = visit(r, Recording::Order::kArrival);
+  REQUIRE(seen.size() == 10);
+  for (std::uint64_t i = 0; i < seen.size(); ++i) CHECK(seen[i].first == i);
+  CHECK(r.count("u") == 10);
+  removeAll();
 }
