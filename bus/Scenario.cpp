@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <ios>
 
 namespace flatsat::bus {
 
@@ -99,6 +100,8 @@ YAML::Node merged(const YAML::Node& base, const YAML::Node& over) {
 
 YAML::Node loadWithBases(const std::string& path, std::vector<std::string>& chain) {
   if (!std::filesystem::exists(path)) throw ScenarioError(path + ": no such file");
+  // A directory opens as a stream that throws on its first read (fuzz.scenario: `base: !0`).
+  if (std::filesystem::is_directory(path)) throw ScenarioError(path + ": is a directory, not a scenario file");
   const std::string canonical = std::filesystem::weakly_canonical(path).string();
   if (std::find(chain.begin(), chain.end(), canonical) != chain.end()) {
     throw ScenarioError(path + ": base: the scenario is its own base (through " + chain.front() + ")");
@@ -110,9 +113,11 @@ YAML::Node loadWithBases(const std::string& path, std::vector<std::string>& chai
   } catch (const YAML::Exception& e) {
     throw ScenarioError(path + ":" + std::to_string(e.mark.line + 1) + ":" +
                         std::to_string(e.mark.column + 1) + ": not valid YAML: " + e.msg);
+  } catch (const std::ios_base::failure& e) {
+    throw ScenarioError(path + ": cannot be read: " + e.what());
   }
   if (!root.IsMap() || !root["base"]) return root;
-  if (!root["base"].IsScalar()) {
+  if (!root["base"].IsScalar() || root["base"].Scalar().empty()) {
     throw ScenarioError(path + ":" + std::to_string(root["base"].Mark().line + 1) + ": base: must be a file name");
   }
   const auto base_path = std::filesystem::path(path).parent_path() / root["base"].as<std::string>();

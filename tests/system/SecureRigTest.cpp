@@ -38,7 +38,9 @@ TEST_CASE("a secured rig takes commands only from a tool with the operator's cer
   const std::string run = test::freshDir("secure-cmd");
   test::Background rig(test::kFlatsat + " run " + std::string(FLATSAT_SCENARIO_DIR) +
                            "/default.yaml -q --no-plots --out " + run +
-                           " --set mode=paced --set duration_orbits=null --set duration_s=12" +
+                           // Long enough for the stranger's 4 s and the operator's two 4 s tries
+                           // after the start: under a loaded suite the run had ended before an ack.
+                           " --set mode=paced --set duration_orbits=null --set duration_s=20" +
                            " --secure " + certs.dir.string(),
                        run + ".log");
   REQUIRE(test::waitForText(fs::path(run) / "logs" / "dynamics_server.log",

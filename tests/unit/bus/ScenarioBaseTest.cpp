@@ -48,5 +48,13 @@ TEST_CASE("a scenario with a base takes its keys, mappings merged and the rest r
   write("missing.yaml", "base: nowhere.yaml\n");
   CHECK_THROWS_WITH(loadScenarioYaml((dir / "missing.yaml").string()),
                     Catch::Matchers::Contains("nowhere.yaml: no such file"));
+  // An empty base (a bare tag, found by fuzz.scenario) named the folder itself.
+  write("bare_tag.yaml", "base: !0");
+  CHECK_THROWS_WITH(loadScenarioYaml((dir / "bare_tag.yaml").string()),
+                    Catch::Matchers::Contains("base: must be a file name"));
+  std::filesystem::create_directories(dir / "folder.yaml");
+  write("folder_base.yaml", "base: folder.yaml\n");
+  CHECK_THROWS_WITH(loadScenarioYaml((dir / "folder_base.yaml").string()),
+                    Catch::Matchers::Contains("folder.yaml: is a directory, not a scenario file"));
   std::filesystem::remove_all(dir);
 }
