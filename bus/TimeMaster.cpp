@@ -61,12 +61,7 @@ TimeMaster::TimeMaster(Bus& bus, NodeOptions options, Timing timing)
     std::lock_guard lock(mutex_);  // the StepDone reader exists already
     for (const auto& [component, divider] : options_.schedule) {
       if (component == name()) continue;
-      bool publishes_stepped = false;
-      const std::string& producer = component;  // a structured binding is not captured (clang 14)
-      forEachTopic([&](const auto& def) {
-        publishes_stepped = publishes_stepped || (def.qos == QosKind::kStepped && def.producer == producer);
-      });
-      awaited_.push_back({component, divider, publishes_stepped ? 0 : kSinkTrailSteps, std::nullopt});
+      awaited_.push_back({component, divider, publishesSteppedTopic(component) ? 0 : kSinkTrailSteps, std::nullopt});
     }
   }
   acknowledgeBusFaults(bus_fault_acks_);
