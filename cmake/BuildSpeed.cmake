@@ -16,3 +16,14 @@ function(flatsat_unity_group target group)
   set_source_files_properties(${ARGN} TARGET_DIRECTORY ${target}
                               PROPERTIES UNITY_GROUP ${target}_${group})
 endfunction()
+
+# flatsat_unity_batches(<target> <size>): the target's sources compiled <size>
+# to a file. For the test executables: each of their files parses Catch2's
+# single header and the rig's headers again, for a few test cases.
+function(flatsat_unity_batches target size)
+  if(NOT FLATSAT_UNITY)
+    return()
+  endif()
+  set_target_properties(${target} PROPERTIES UNITY_BUILD ON UNITY_BUILD_MODE BATCH
+                        UNITY_BUILD_BATCH_SIZE ${size})
+endfunction()

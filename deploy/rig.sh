@@ -93,11 +93,13 @@ case "$cmd" in
     build_fuzzers 30
     # The suite runs those fuzzers too (fuzz.<target>), 30 s each: the whole
     # suite then stays under 20 minutes on two cores.
-    cmake -S "$here" -B "$build" -DFLATSAT_FUZZERS_DIR="$fuzz_build/bin" -DFLATSAT_FUZZ_SECONDS=30 >/dev/null
+    cmake -S "$here" -B "$build" -DFLATSAT_FUZZERS_DIR="$fuzz_build/bin" -DFLATSAT_FUZZ_SECONDS=30 \
+      -DFLATSAT_TEST_CORES="$jobs" >/dev/null
     start_docker
     cd "$build"
-    # Every test holds a core of this resource spec, so $jobs run at once; the
-    # one slot more is for the soak (10 min paced), which holds none.
+    # Every test holds a core of this resource spec, so $jobs run at once, and
+    # a paced one holds them all; the one slot more is for the soak (10 min
+    # paced), which holds none.
     printf '{"version": {"major": 1, "minor": 0}, "local": [{"cores": [{"id": "0", "slots": %d}]}]}\n' \
       "$jobs" > ctest-resources.json
     exec ctest --output-on-failure -j"$((jobs + 1))" --timeout 1500 --resource-spec-file ctest-resources.json

@@ -2,6 +2,7 @@
 #include "components/attitude_controller/AttitudeControllerNode.hpp"
 
 #include "bus/Convert.hpp"
+#include "components/Processes.hpp"
 #include "components/common/ReferenceParams.hpp"
 #include "sim/DynamicsServerParams.hpp"
 
@@ -95,6 +96,13 @@ AttitudeControllerNodeParams readParams(const bus::Scenario& scenario, const bus
   r.problems(p.validate());
   r.finish();
   return node;
+}
+
+int runProcess(int argc, char** argv) {
+  return bus::runNode(argc, argv, "attitude_controller", readParams,
+                      [](bus::Bus& bus, bus::NodeOptions options, const auto& params) {
+                        return std::make_unique<AttitudeControllerNode>(bus, std::move(options), params);
+                      });
 }
 
 }  // namespace flatsat::attitude_controller

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "components/estimator/EstimatorNode.hpp"
 
+#include "components/Processes.hpp"
 #include "components/common/StateJson.hpp"
 
 #include <algorithm>
@@ -361,6 +362,13 @@ EstimatorNodeParams readParams(const bus::Scenario& scenario, const bus::NodeArg
   r.problems(p.method == EstimatorMethod::kMekf ? p.mekf.validate() : p.filter.validate());
   r.finish();
   return p;
+}
+
+int runProcess(int argc, char** argv) {
+  return bus::runNode(argc, argv, "estimator", readParams,
+                      [](bus::Bus& bus, bus::NodeOptions options, const auto& params) {
+                        return std::make_unique<EstimatorNode>(bus, std::move(options), params);
+                      });
 }
 
 }  // namespace flatsat::estimator

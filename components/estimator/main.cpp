@@ -1,12 +1,4 @@
 // SPDX-License-Identifier: Apache-2.0
-#include <memory>
+#include "components/Processes.hpp"
 
-#include "components/estimator/EstimatorNode.hpp"
-
-int main(int argc, char** argv) {
-  using namespace flatsat;
-  return bus::runNode(argc, argv, "estimator", estimator::readParams,
-                      [](bus::Bus& bus, bus::NodeOptions options, const auto& params) {
-                        return std::make_unique<estimator::EstimatorNode>(bus, std::move(options), params);
-                      });
-}
+int main(int argc, char** argv) { return flatsat::estimator::runProcess(argc, argv); }

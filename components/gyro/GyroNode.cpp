@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "components/gyro/GyroNode.hpp"
+#include "components/Processes.hpp"
 
 namespace flatsat::gyro {
 
@@ -15,4 +16,16 @@ EmulatorParams<GyroParams> readParams(const bus::Scenario& scenario, const bus::
       });
 }
 
+int runProcess(int argc, char** argv) {
+  return bus::runNode(argc, argv, "gyro", readParams,
+                      [](bus::Bus& bus, bus::NodeOptions options, const auto& params) {
+                        return std::make_unique<GyroNode>(bus, std::move(options), params);
+                      });
+}
+
 }  // namespace flatsat::gyro
+
+namespace flatsat {
+template class EmulatorNode<gyro::GyroModel, bus::topics::kGyro, gyro::toInput, gyro::toMessage,
+                            &gyro::GyroOutput::w_NB_B_rad_s>;
+}  // namespace flatsat

@@ -21,6 +21,12 @@ using GyroNode =
 
 /// components.<name> of the scenario.
 EmulatorParams<GyroParams> readParams(const bus::Scenario& scenario, const bus::NodeArgs& args,
-                      bus::ConfigProblems& problems);
+                                      bus::ConfigProblems& problems);
 
 }  // namespace flatsat::gyro
+
+namespace flatsat {
+// Compiled once, in GyroNode.cpp; the process, the composed rig and the tests link it.
+extern template class EmulatorNode<gyro::GyroModel, bus::topics::kGyro, gyro::toInput, gyro::toMessage,
+                                   &gyro::GyroOutput::w_NB_B_rad_s>;
+}  // namespace flatsat

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "components/magnetometer/MagnetometerNode.hpp"
+#include "components/Processes.hpp"
 
 namespace flatsat::magnetometer {
 
@@ -18,4 +19,17 @@ EmulatorParams<MagnetometerParams> readParams(const bus::Scenario& scenario, con
       });
 }
 
+int runProcess(int argc, char** argv) {
+  return bus::runNode(argc, argv, "magnetometer", readParams,
+                      [](bus::Bus& bus, bus::NodeOptions options, const auto& params) {
+                        return std::make_unique<MagnetometerNode>(bus, std::move(options), params);
+                      });
+}
+
 }  // namespace flatsat::magnetometer
+
+namespace flatsat {
+template class EmulatorNode<magnetometer::MagnetometerModel, bus::topics::kMagnetometer,
+                            magnetometer::toInput, magnetometer::toMessage,
+                            &magnetometer::MagnetometerOutput::b_B_T>;
+}  // namespace flatsat

@@ -27,3 +27,10 @@ EmulatorParams<MagnetometerParams> readParams(const bus::Scenario& scenario, con
                               bus::ConfigProblems& problems);
 
 }  // namespace flatsat::magnetometer
+
+namespace flatsat {
+// Compiled once, in MagnetometerNode.cpp; the process, the composed rig and the tests link it.
+extern template class EmulatorNode<magnetometer::MagnetometerModel, bus::topics::kMagnetometer,
+                                   magnetometer::toInput, magnetometer::toMessage,
+                                   &magnetometer::MagnetometerOutput::b_B_T>;
+}  // namespace flatsat

@@ -11,6 +11,7 @@
 
 #include "bus/Convert.hpp"
 #include "bus/Stamp.hpp"
+#include "components/Processes.hpp"
 #include "components/magnetometer_bridge/SerialPort.hpp"
 
 namespace flatsat::magnetometer_bridge {
@@ -101,6 +102,15 @@ MagnetometerBridgeNodeParams readParams(const bus::Scenario& scenario, const bus
   r.problems(p.bridge.validate());
   r.finish();
   return p;
+}
+
+int runProcess(int argc, char** argv) {
+  return bus::runNode(
+      argc, argv, "magnetometer_bridge", readParams,
+      [](bus::Bus& bus, bus::NodeOptions options, const auto& params) {
+        return std::make_unique<MagnetometerBridgeNode>(bus, std::move(options), params);
+      },
+      bus::kBridgeStrength);
 }
 
 }  // namespace flatsat::magnetometer_bridge

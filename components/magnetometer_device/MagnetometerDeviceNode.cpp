@@ -15,6 +15,7 @@
 #include <spdlog/spdlog.h>
 
 #include "bus/Convert.hpp"
+#include "components/Processes.hpp"
 #include "components/magnetometer_bridge/MagnetometerBridgeNode.hpp"
 #include "components/magnetometer_bridge/SerialPort.hpp"
 
@@ -108,6 +109,13 @@ MagnetometerDeviceParams readParams(const bus::Scenario& scenario, const bus::No
   r.problems(p.mounting.validate());
   r.finish();
   return p;
+}
+
+int runProcess(int argc, char** argv) {
+  return bus::runNode(argc, argv, "magnetometer_device", readParams,
+                      [](bus::Bus& bus, bus::NodeOptions options, const auto& params) {
+                        return std::make_unique<MagnetometerDeviceNode>(bus, std::move(options), params);
+                      });
 }
 
 }  // namespace flatsat::magnetometer_device

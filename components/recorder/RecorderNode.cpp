@@ -9,6 +9,7 @@
 
 #include "bus/RecordingMeta.hpp"
 #include "bus/Serialization.hpp"
+#include "components/Processes.hpp"
 
 namespace flatsat::recorder {
 
@@ -176,6 +177,13 @@ RecorderParams readParams(const bus::Scenario& scenario, const bus::NodeArgs& ar
             {bus::meta::kLeaseMs, std::to_string(std::llround(scenario.liveliness_lease_s * 1e3))}};
   if (p.record_every_steps != 1) p.meta[bus::meta::kRecordEverySteps] = std::to_string(p.record_every_steps);
   return p;
+}
+
+int runProcess(int argc, char** argv) {
+  return bus::runNode(argc, argv, "recorder", readParams,
+                      [](bus::Bus& bus, bus::NodeOptions options, const auto& params) {
+                        return std::make_unique<RecorderNode>(bus, std::move(options), params);
+                      });
 }
 
 }  // namespace flatsat::recorder

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "components/star_tracker/StarTrackerNode.hpp"
+#include "components/Processes.hpp"
 
 namespace flatsat::star_tracker {
 
@@ -16,4 +17,16 @@ EmulatorParams<StarTrackerParams> readParams(const bus::Scenario& scenario, cons
       });
 }
 
+int runProcess(int argc, char** argv) {
+  return bus::runNode(argc, argv, "star_tracker", readParams,
+                      [](bus::Bus& bus, bus::NodeOptions options, const auto& params) {
+                        return std::make_unique<StarTrackerNode>(bus, std::move(options), params);
+                      });
+}
+
 }  // namespace flatsat::star_tracker
+
+namespace flatsat {
+template class EmulatorNode<star_tracker::StarTrackerModel, bus::topics::kStarTracker, star_tracker::toInput,
+                            star_tracker::toMessage, &star_tracker::StarTrackerOutput::error_B_rad>;
+}  // namespace flatsat

@@ -28,3 +28,10 @@ EmulatorParams<StarTrackerParams> readParams(const bus::Scenario& scenario, cons
                                              bus::ConfigProblems& problems);
 
 }  // namespace flatsat::star_tracker
+
+namespace flatsat {
+// Compiled once, in StarTrackerNode.cpp; the process, the composed rig and the tests link it.
+extern template class EmulatorNode<star_tracker::StarTrackerModel, bus::topics::kStarTracker,
+                                   star_tracker::toInput, star_tracker::toMessage,
+                                   &star_tracker::StarTrackerOutput::error_B_rad>;
+}  // namespace flatsat

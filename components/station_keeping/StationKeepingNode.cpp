@@ -7,6 +7,7 @@
 
 #include "bus/Convert.hpp"
 #include "bus/Stamp.hpp"
+#include "components/Processes.hpp"
 #include "sim/Constants.hpp"
 #include "sim/DynamicsServerParams.hpp"
 #include "sim/SunEphemeris.hpp"
@@ -178,6 +179,13 @@ StationKeepingNodeParams readParams(const bus::Scenario& scenario, const bus::No
   r.problems(validate(p.mean_elements));
   r.finish();
   return p;
+}
+
+int runProcess(int argc, char** argv) {
+  return bus::runNode(argc, argv, "station_keeping", readParams,
+                      [](bus::Bus& bus, bus::NodeOptions options, const auto& params) {
+                        return std::make_unique<StationKeepingNode>(bus, std::move(options), params);
+                      });
 }
 
 }  // namespace flatsat::station_keeping

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "components/sun_sensor/SunSensorNode.hpp"
+#include "components/Processes.hpp"
 
 namespace flatsat::sun_sensor {
 
@@ -40,4 +41,16 @@ EmulatorParams<SunSensorParams> readParams(const bus::Scenario& scenario, const 
       });
 }
 
+int runProcess(int argc, char** argv) {
+  return bus::runNode(argc, argv, "sun_sensor", readParams,
+                      [](bus::Bus& bus, bus::NodeOptions options, const auto& params) {
+                        return std::make_unique<SunSensorNode>(bus, std::move(options), params);
+                      });
+}
+
 }  // namespace flatsat::sun_sensor
+
+namespace flatsat {
+template class EmulatorNode<sun_sensor::SunSensorModel, bus::topics::kSunSensor, sun_sensor::toInput,
+                            sun_sensor::toMessage, &sun_sensor::SunSensorOutput::sun_B_unit>;
+}  // namespace flatsat

@@ -30,3 +30,9 @@ EmulatorParams<SunSensorParams> readParams(const bus::Scenario& scenario, const 
                            bus::ConfigProblems& problems);
 
 }  // namespace flatsat::sun_sensor
+
+namespace flatsat {
+// Compiled once, in SunSensorNode.cpp; the process, the composed rig and the tests link it.
+extern template class EmulatorNode<sun_sensor::SunSensorModel, bus::topics::kSunSensor, sun_sensor::toInput,
+                                   sun_sensor::toMessage, &sun_sensor::SunSensorOutput::sun_B_unit>;
+}  // namespace flatsat

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "components/thruster_sequencer/ThrusterSequencerNode.hpp"
 
+#include "components/Processes.hpp"
 #include "components/common/StateJson.hpp"
 #include "components/station_keeping/FiringTable.hpp"
 
@@ -217,6 +218,13 @@ ThrusterSequencerParams readParams(const bus::Scenario& scenario, const bus::Nod
   }
   r.finish();
   return p;
+}
+
+int runProcess(int argc, char** argv) {
+  return bus::runNode(argc, argv, "thruster_sequencer", readParams,
+                      [](bus::Bus& bus, bus::NodeOptions options, const auto& params) {
+                        return std::make_unique<ThrusterSequencerNode>(bus, std::move(options), params);
+                      });
 }
 
 }  // namespace flatsat::thruster_sequencer

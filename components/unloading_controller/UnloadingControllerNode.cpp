@@ -7,6 +7,7 @@
 #include <spdlog/spdlog.h>
 
 #include "bus/Convert.hpp"
+#include "components/Processes.hpp"
 #include "components/common/ReferenceParams.hpp"
 #include "sim/DynamicsServerParams.hpp"
 #include "sim/KeplerOrbit.hpp"
@@ -327,6 +328,13 @@ UnloadingControllerNodeParams readParams(const bus::Scenario& scenario, const bu
   if (node.onboard) r.problems(node.onboard->validate());
   r.finish();
   return node;
+}
+
+int runProcess(int argc, char** argv) {
+  return bus::runNode(argc, argv, "unloading_controller", readParams,
+                      [](bus::Bus& bus, bus::NodeOptions options, const auto& params) {
+                        return std::make_unique<UnloadingControllerNode>(bus, std::move(options), params);
+                      });
 }
 
 }  // namespace flatsat::unloading_controller

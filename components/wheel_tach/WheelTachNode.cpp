@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "components/wheel_tach/WheelTachNode.hpp"
 
+#include "components/Processes.hpp"
 #include "sim/DynamicsServerParams.hpp"
 
 namespace flatsat::wheel_tach {
@@ -17,4 +18,16 @@ EmulatorParams<WheelTachParams> readParams(const bus::Scenario& scenario, const 
       });
 }
 
+int runProcess(int argc, char** argv) {
+  return bus::runNode(argc, argv, "wheel_tach", readParams,
+                      [](bus::Bus& bus, bus::NodeOptions options, const auto& params) {
+                        return std::make_unique<WheelTachNode>(bus, std::move(options), params);
+                      });
+}
+
 }  // namespace flatsat::wheel_tach
+
+namespace flatsat {
+template class EmulatorNode<wheel_tach::WheelTachModel, bus::topics::kWheelTach, wheel_tach::toInput,
+                            wheel_tach::toMessage, &wheel_tach::WheelTachOutput::wheel_speed_rad_s>;
+}  // namespace flatsat

@@ -26,3 +26,9 @@ EmulatorParams<WheelTachParams> readParams(const bus::Scenario& scenario, const 
                            bus::ConfigProblems& problems);
 
 }  // namespace flatsat::wheel_tach
+
+namespace flatsat {
+// Compiled once, in WheelTachNode.cpp; the process, the composed rig and the tests link it.
+extern template class EmulatorNode<wheel_tach::WheelTachModel, bus::topics::kWheelTach, wheel_tach::toInput,
+                                   wheel_tach::toMessage, &wheel_tach::WheelTachOutput::wheel_speed_rad_s>;
+}  // namespace flatsat

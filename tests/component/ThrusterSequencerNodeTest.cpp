@@ -13,13 +13,13 @@
 #include "bus/TimeMaster.hpp"
 #include "components/thruster_sequencer/ThrusterSequencerNode.hpp"
 #include "tests/support/TestDomain.hpp"
+#include "tests/support/TestUnits.hpp"
 
 namespace {
 
 using namespace flatsat;
 
 constexpr std::uint64_t kSteps = 30;
-constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr double kAngle = 3.0 * kDeg;  // beyond A3 = 1 deg
 
 class ScriptedPeers final : public bus::TimeMaster {

@@ -19,6 +19,8 @@
 namespace flatsat::test {
 
 inline const std::string kFlatsat = std::string(FLATSAT_BIN_DIR) + "/flatsat";
+/// The default scenario, the one `flatsat run` runs without one named.
+inline const std::string kDefault = std::string(FLATSAT_SCENARIO_DIR) + "/default.yaml";
 
 /// An empty temporary directory path unique to this test process and tag.
 inline std::string freshDir(const std::string& tag) {

@@ -8,13 +8,14 @@
 #include <sstream>
 #include <string>
 
+#include "tests/support/Rig.hpp"
 #include "tests/support/Run.hpp"
 
 using namespace flatsat;
 
 namespace {
 
-const std::string kFlatsat = std::string(FLATSAT_BIN_DIR) + "/flatsat";
+using test::kFlatsat;
 
 std::map<std::string, double> keyValues(const std::string& output) {
   std::map<std::string, double> values;

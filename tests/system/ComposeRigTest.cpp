@@ -21,7 +21,7 @@ using namespace flatsat;
 namespace {
 
 const std::string kRunSh = std::string(FLATSAT_SOURCE_DIR) + "/deploy/compose/run.sh";
-const std::string kDefault = std::string(FLATSAT_SCENARIO_DIR) + "/default.yaml";
+using test::kDefault;
 // The containers' start (discovery) and these steps last long enough for
 // several health probes at 2 s.
 const std::string kLength = "--set duration_orbits=null --set duration_s=120";

@@ -24,7 +24,7 @@ using namespace flatsat;
 
 namespace {
 
-const std::string kDefault = std::string(FLATSAT_SCENARIO_DIR) + "/default.yaml";
+using test::kDefault;
 const std::string kShort = "--set duration_orbits=null --set duration_s=300";
 
 /// What a live process holds that a DDS participant would have opened:

@@ -28,7 +28,7 @@ using namespace flatsat;
 
 namespace {
 
-const std::string kDefault = std::string(FLATSAT_SCENARIO_DIR) + "/default.yaml";
+using test::kDefault;
 const std::string kArgs = "--set duration_orbits=null --set duration_s=300";
 constexpr std::uint64_t kCommitEvery = 50;  // recorder's default commit_every_steps
 constexpr std::uint64_t kKillAfter = 150;   // committed truth samples seen before the kill

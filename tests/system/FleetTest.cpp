@@ -18,7 +18,7 @@ using namespace flatsat;
 
 namespace {
 
-const std::string kDefault = std::string(FLATSAT_SCENARIO_DIR) + "/default.yaml";
+using test::kDefault;
 const std::string kShort = "--set duration_orbits=null --set duration_s=60 --set seed=500";
 
 nlohmann::json readJson(const fs::path& file) {

@@ -26,7 +26,7 @@ using namespace flatsat;
 
 namespace {
 
-const std::string kDefault = std::string(FLATSAT_SCENARIO_DIR) + "/default.yaml";
+using test::kDefault;
 
 /// The rig of `mode` with wheel_tach external, and wheel_tach started by hand once the rig wrote its scenario.
 struct RigWithExternalTach {

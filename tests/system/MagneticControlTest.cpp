@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "tests/support/Rig.hpp"
 #include "tests/support/Run.hpp"
 #include "tests/support/TestDomain.hpp"
 
@@ -18,7 +19,7 @@ using namespace flatsat;
 
 namespace {
 
-const std::string kFlatsat = std::string(FLATSAT_BIN_DIR) + "/flatsat";
+using test::kFlatsat;
 
 nlohmann::json runScenario(const std::string& file, const std::string& tag, const std::string& extra) {
   test::exportTestDomain();

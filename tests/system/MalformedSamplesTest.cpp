@@ -20,7 +20,7 @@ using namespace flatsat;
 
 namespace {
 
-const std::string kDefault = std::string(FLATSAT_SCENARIO_DIR) + "/default.yaml";
+using test::kDefault;
 const std::string kRogue = std::string(FLATSAT_BIN_DIR) + "/rogue_participant";
 // Long enough (a few seconds of stepping) for the 1 s health heartbeats to
 // carry the counts into the recording.

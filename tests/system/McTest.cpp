@@ -27,7 +27,7 @@ using namespace flatsat;
 
 namespace {
 
-const std::string kDefault = std::string(FLATSAT_SCENARIO_DIR) + "/default.yaml";
+using test::kDefault;
 // 300 s with the pointing metrics from 100 s on, so that they see the noise.
 const std::string kShort = " --set duration_orbits=null --set duration_s=300 --set metrics.acquisition_s=100";
 

@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "tests/support/Rig.hpp"
 #include "tests/support/Run.hpp"
 #include "tests/support/TestDomain.hpp"
 
@@ -17,7 +18,7 @@ using namespace flatsat;
 
 namespace {
 
-const std::string kFlatsat = std::string(FLATSAT_BIN_DIR) + "/flatsat";
+using test::kFlatsat;
 const std::string kMekf = std::string(FLATSAT_SCENARIO_DIR) + "/mekf.yaml";
 
 struct MekfRun {

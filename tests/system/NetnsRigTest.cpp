@@ -19,7 +19,7 @@ using namespace flatsat;
 namespace {
 
 const std::string kRunSh = std::string(FLATSAT_SCENARIO_DIR) + "/../netns/run.sh";
-const std::string kDefault = std::string(FLATSAT_SCENARIO_DIR) + "/default.yaml";
+using test::kDefault;
 const std::string kShort = "--set duration_orbits=null --set duration_s=60";
 const std::string& kRtps = test::kRtpsFilter;
 
@@ -46,7 +46,7 @@ TEST_CASE("the namespace rig records what the one-host rig records", "[system][n
   if (!netnsPermitted()) return;
   REQUIRE(test::runCommand("command -v tcpdump").exit_code == 0);
   const auto one_host = test::runScenario(kDefault, test::freshDir("netns-onehost"), kShort).summary;
-  const std::string id = "t" + std::to_string(::getpid());
+  const std::string id = std::string("t").append(std::to_string(::getpid()));  // not "t" + …: GCC 12 -Wrestrict false positive
 
   {  // across namespaces over UDP, nothing on the host's interfaces
     const std::string out = test::freshDir("netns-rig");
@@ -112,7 +112,7 @@ TEST_CASE("the namespace rig records what the one-host rig records", "[system][n
 TEST_CASE("the namespace rig removes its namespaces when the run fails", "[system][network][netns]") {
   if (!netnsPermitted()) return;
   test::exportTestDomain();
-  const std::string id = "f" + std::to_string(::getpid());
+  const std::string id = std::string("f").append(std::to_string(::getpid()));  // not "f" + …: GCC 12 -Wrestrict false positive
   const std::string out = test::freshDir("netns-fail");
   const auto result = test::runCommand(rigEnvironment(id) + kRunSh + " " + kDefault + " " + out +
                                        " -q --set step_s=-1");

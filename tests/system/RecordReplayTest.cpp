@@ -18,7 +18,7 @@ using namespace flatsat;
 
 namespace {
 
-const std::string kDefault = std::string(FLATSAT_SCENARIO_DIR) + "/default.yaml";
+using test::kDefault;
 
 /// A finished lockstep run of the default rig; its folder.
 std::string finishedRun(const std::string& tag, int duration_s) {

@@ -20,7 +20,7 @@ using namespace flatsat;
 namespace {
 
 using test::kFlatsat;
-const std::string kDefault = std::string(FLATSAT_SCENARIO_DIR) + "/default.yaml";
+using test::kDefault;
 
 using test::freshDir;
 

@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "tests/support/Rig.hpp"
 #include "tests/support/Run.hpp"
 #include "tests/support/TestDomain.hpp"
 
@@ -19,7 +20,7 @@ using namespace flatsat;
 
 namespace {
 
-const std::string kFlatsat = std::string(FLATSAT_BIN_DIR) + "/flatsat";
+using test::kFlatsat;
 const std::string kExample = std::string(FLATSAT_SCENARIO_DIR) + "/s1_example.yaml";
 
 nlohmann::json runExample(const std::string& tag, const std::string& extra) {

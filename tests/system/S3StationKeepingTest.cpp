@@ -24,13 +24,12 @@
 #include "tests/support/Csv.hpp"
 #include "tests/support/Run.hpp"
 #include "tests/support/TestDomain.hpp"
+#include "tests/support/TestUnits.hpp"
 
 namespace fs = std::filesystem;
 using namespace flatsat;
 
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 /// One row of the seed's Table I (Hughes, JP3299143), restated here from the
 /// patent, not taken from the planner: a thruster and where it fires. `sun_anti`:

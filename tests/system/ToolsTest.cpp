@@ -17,6 +17,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "tests/support/Rig.hpp"
 #include "tests/support/Run.hpp"
 #include "tests/support/TestDomain.hpp"
 
@@ -27,8 +28,8 @@ using namespace flatsat;
 
 namespace {
 
-const std::string kFlatsat = std::string(FLATSAT_BIN_DIR) + "/flatsat";
-const std::string kDefault = std::string(FLATSAT_SCENARIO_DIR) + "/default.yaml";
+using test::kFlatsat;
+using test::kDefault;
 /// The default rig's components (deploy/scenarios/default.yaml).
 const std::vector<std::string> kComponents = {
     "dynamics_server", "magnetometer",        "sun_sensor",           "gyro",    "wheel_tach",

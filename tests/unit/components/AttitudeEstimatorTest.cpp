@@ -11,6 +11,7 @@
 #include <Eigen/Geometry>
 
 #include "components/estimator/AttitudeEstimator.hpp"
+#include "tests/support/TestUnits.hpp"
 
 using flatsat::estimator::AttitudeEstimator;
 using flatsat::estimator::AttitudeEstimatorInput;
@@ -19,7 +20,6 @@ using flatsat::estimator::triad;
 
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
 const Eigen::Vector3d kSun_N = Eigen::Vector3d(0.3, 0.9, 0.2).normalized();
 const Eigen::Vector3d kField_N_T(1.5e-5, -2.0e-5, 3.5e-5);
 const Eigen::Quaterniond kAttitude0_NB(Eigen::AngleAxisd(1.0, Eigen::Vector3d(1.0, -1.0, 2.0).normalized()));

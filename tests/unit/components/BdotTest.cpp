@@ -11,6 +11,7 @@
 
 #include "components/unloading_controller/SpinCapture.hpp"
 #include "tests/unit/components/MagneticClosedLoop.hpp"
+#include "tests/support/TestUnits.hpp"
 
 using namespace flatsat;
 using unloading_controller::Bdot;
@@ -18,8 +19,6 @@ using unloading_controller::BdotParams;
 using unloading_controller::BdotShape;
 
 namespace {
-
-constexpr std::int64_t kSecond = 1'000'000'000;
 
 /// The field of a constant inertial B seen from a body turning at w for t seconds.
 Eigen::Vector3d fieldSeen(const Eigen::Vector3d& b_N, const Eigen::Vector3d& w_B, double t) {
@@ -153,7 +152,7 @@ TEST_CASE("B-dot never raises the kinetic energy while it detumbles", "[bdot]") 
   // 0.2 deg/s) and the command's one-sample lag is a small turn: 0.5 deg at 10 Hz.
   for (const BdotShape shape : {BdotShape::kBangBang, BdotShape::kProportional}) {
     for (std::uint64_t seed = 1; seed <= 5; ++seed) {
-      const auto plant = test::dawnDuskSmallSat(seed, 10.0 * test::kDeg);
+      const auto plant = test::dawnDuskSmallSat(seed, 10.0 * kDeg);
       BdotParams p;
       p.shape = shape;
       p.max_dipole_Am2 = plant.torquer_max_dipole_Am2;
@@ -163,7 +162,7 @@ TEST_CASE("B-dot never raises the kinetic energy while it detumbles", "[bdot]") 
       std::size_t judged = 0;
       const auto across = [](const sim::Truth& t) { return t.w_NB_B_rad_s.cross(t.b_B_T.normalized()).norm(); };
       test::runClosedLoop(plant, law, 0.5 * test::orbitPeriod_s(plant), [&](const sim::Truth& t, const auto&) {
-        if (std::min(across(before), across(t)) > 1.0 * test::kDeg) {
+        if (std::min(across(before), across(t)) > 1.0 * kDeg) {
           const double field_work = t.dipole_applied_B_Am2.norm() * (t.b_N_T - before.b_N_T).norm();
           const double e0 = kineticEnergy(plant, before);
           worst = std::max(worst, (kineticEnergy(plant, t) - e0 - field_work) / e0);
@@ -182,19 +181,19 @@ TEST_CASE("B-dot detumbles 10 deg/s about random axes below 0.2 deg/s within 3 o
   // 10 of the 50 seeded cases; `flatsat study detumble` runs all 50.
   for (const BdotShape shape : {BdotShape::kBangBang, BdotShape::kProportional}) {
     for (std::uint64_t seed = 1; seed <= 10; ++seed) {
-      const auto plant = test::dawnDuskSmallSat(seed, 10.0 * test::kDeg);
+      const auto plant = test::dawnDuskSmallSat(seed, 10.0 * kDeg);
       BdotParams p;
       p.shape = shape;
       p.max_dipole_Am2 = plant.torquer_max_dipole_Am2;
       // Without it bang-bang can lock the spin axis onto B: with ω ∥ B, P = B × ω is
       // noise-sized and its random signs keep dragging the axis after the field.
-      p.deadband_rad_s = 0.05 * test::kDeg;
+      p.deadband_rad_s = 0.05 * kDeg;
       Bdot law(p);
       double rate = 0.0;
       test::runClosedLoop(plant, law, 3.0 * test::orbitPeriod_s(plant),
                           [&](const sim::Truth& t, const auto&) { rate = t.w_NB_B_rad_s.norm(); });
       INFO("shape " << static_cast<int>(shape) << " seed " << seed);
-      CHECK(rate < 0.2 * test::kDeg);
+      CHECK(rate < 0.2 * kDeg);
     }
   }
 }
@@ -202,9 +201,9 @@ TEST_CASE("B-dot detumbles 10 deg/s about random axes below 0.2 deg/s within 3 o
 TEST_CASE("S4 spin capture: spin axis on the orbit normal, rate within 5 % in 5 orbits", "[bdot]") {
   // 10 of the 50 seeded cases; `flatsat study spin` runs all 50. Judged over
   // the whole fifth orbit, so a capture that is only passing does not count.
-  const double target = 2.0 * test::kDeg;
+  const double target = 2.0 * kDeg;
   for (std::uint64_t seed = 1; seed <= 10; ++seed) {
-    const auto plant = test::dawnDuskSmallSat(seed, 10.0 * test::kDeg);
+    const auto plant = test::dawnDuskSmallSat(seed, 10.0 * kDeg);
     const double period = test::orbitPeriod_s(plant);
     unloading_controller::SpinCaptureParams spin;
     spin.spin_rate_rad_s = target;
@@ -219,8 +218,8 @@ TEST_CASE("S4 spin capture: spin axis on the orbit normal, rate within 5 % in 5 
       axis_error = std::max(axis_error, std::acos(std::clamp(axis_N.dot(normal_N), -1.0, 1.0)));
       rate_error = std::max(rate_error, std::abs((t.q_NB * t.w_NB_B_rad_s).dot(normal_N) - target) / target);
     });
-    INFO("seed " << seed << ": axis " << axis_error / test::kDeg << " deg, rate " << 100 * rate_error << " %");
-    CHECK(axis_error < 5.0 * test::kDeg);
+    INFO("seed " << seed << ": axis " << axis_error / kDeg << " deg, rate " << 100 * rate_error << " %");
+    CHECK(axis_error < 5.0 * kDeg);
     CHECK(rate_error < 0.05);
   }
 }

@@ -6,11 +6,11 @@
 #include <catch2/catch.hpp>
 
 #include "components/unloading_controller/CoilArbiter.hpp"
+#include "tests/support/TestUnits.hpp"
 
 using namespace flatsat::unloading_controller;
 
 namespace {
-constexpr std::int64_t kSecond = 1'000'000'000;
 }
 
 TEST_CASE("coil arbiter: a window runs whole, the law resumes after it", "[coils]") {

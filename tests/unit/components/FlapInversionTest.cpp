@@ -9,6 +9,7 @@
 
 #include "components/unloading_controller/FlapInversion.hpp"
 #include "sim/Flaps.hpp"
+#include "tests/support/TestUnits.hpp"
 
 using flatsat::sim::Flaps;
 using flatsat::unloading_controller::FlapBranch;
@@ -19,7 +20,6 @@ using flatsat::unloading_controller::seedSmallAngleSquares;
 
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr double kRoundTrip = 1e-9;
 
 /// Angles of a two-unknown pattern: plates a and b at ±asin √y, as the seed's branches set them.

@@ -12,6 +12,7 @@
 #include "components/station_keeping/GeoThrusters.hpp"
 #include "sim/Constants.hpp"
 #include "sim/KeplerOrbit.hpp"
+#include "tests/support/TestUnits.hpp"
 
 using namespace flatsat;
 using namespace flatsat::station_keeping;
@@ -20,7 +21,6 @@ using Catch::Matchers::WithinRel;
 
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
 const double kSyncRadius_m = std::cbrt(sim::kMuEarth_m3_s2 / std::pow(sim::kEarthRotationRate_rad_s, 2));
 
 double wrapPi(double a) { return std::remainder(a, 2.0 * std::numbers::pi); }

@@ -14,13 +14,13 @@
 #include "sim/Constants.hpp"
 #include "sim/OrbitForces.hpp"
 #include "sim/OrbitPropagator.hpp"
+#include "tests/support/TestUnits.hpp"
 
 using namespace flatsat;
 using namespace flatsat::station_keeping;
 
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr double kYear_s = 365.25 * 86400.0;
 
 sim::OrbitForceParams geoForces() {

@@ -8,13 +8,12 @@
 #include <catch2/catch.hpp>
 
 #include "components/thruster_sequencer/GimbalDumping.hpp"
+#include "tests/support/TestUnits.hpp"
 
 using namespace flatsat;
 using namespace flatsat::thruster_sequencer;
 
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 /// The seed's NC(22): on the zenith face, thrust through the centre of mass,
 /// gimbals ±2° east–west (axis 1) and north–south (axis 2); one y wheel.

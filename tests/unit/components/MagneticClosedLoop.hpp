@@ -12,10 +12,9 @@
 #include "sim/DynamicsModel.hpp"
 #include "sim/InitialDispersion.hpp"
 #include "sim/KeplerOrbit.hpp"
+#include "tests/support/TestUnits.hpp"
 
 namespace flatsat::test {
-
-inline constexpr double kDeg = std::numbers::pi / 180.0;
 
 inline sim::DynamicsParams dawnDuskSmallSat(std::uint64_t seed, double tumble_rate_rad_s) {
   sim::DynamicsParams p;

@@ -8,12 +8,11 @@
 #include <Eigen/Geometry>
 
 #include "components/unloading_controller/MagneticModes.hpp"
+#include "tests/support/TestUnits.hpp"
 
 using namespace flatsat::unloading_controller;
 
 namespace {
-
-constexpr std::int64_t kSecond = 1'000'000'000;
 
 /// The field of a constant inertial B seen from a body turned by angle [rad] about z.
 Eigen::Vector3d fieldSeen(double angle) {

@@ -22,6 +22,7 @@
 #include "sim/DynamicsParams.hpp"
 #include "sim/KeplerOrbit.hpp"
 #include "sim/SunEphemeris.hpp"
+#include "tests/support/TestUnits.hpp"
 
 using flatsat::estimator::chiSquareQuantile;
 using flatsat::estimator::MeasurementUse;
@@ -32,7 +33,6 @@ using flatsat::estimator::ReferenceModel;
 
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr double kDegPerHour = kDeg / 3600.0;
 constexpr std::int64_t kStep_ns = 100'000'000;
 constexpr double kStep_s = 0.1;

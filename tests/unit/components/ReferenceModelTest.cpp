@@ -11,13 +11,13 @@
 #include "components/estimator/ReferenceModel.hpp"
 #include "sim/Constants.hpp"
 #include "sim/GeomagneticCoefficients.hpp"
+#include "tests/support/TestUnits.hpp"
 
 using flatsat::estimator::ReferenceModel;
 using flatsat::estimator::ReferenceModelParams;
 
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
 const std::string kIgrfFile = std::string(FLATSAT_DATA_DIR) + "/igrf/igrf14coeffs.txt";
 
 ReferenceModelParams params(double field_node_s) {
@@ -30,8 +30,6 @@ ReferenceModelParams params(double field_node_s) {
   p.field_node_s = field_node_s;
   return p;
 }
-
-std::int64_t ns(double t_s) { return std::llround(t_s * 1e9); }
 
 }  // namespace
 

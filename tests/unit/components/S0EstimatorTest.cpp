@@ -10,13 +10,13 @@
 
 #include "components/estimator/S0Estimator.hpp"
 #include "components/estimator/S0FieldFromMomentum.hpp"
+#include "tests/support/TestUnits.hpp"
 
 using namespace flatsat;
 using namespace flatsat::estimator;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr std::int64_t kStepNs = 100'000'000;  // 0.1 s samples
 
 /// The seed's plant: dH/dt = Ms + M × B(t) − ω × H in a body frame turning at ω
@@ -48,8 +48,6 @@ struct RollingBody {
     }
   }
 };
-
-std::int64_t ns(double s) { return static_cast<std::int64_t>(std::llround(s * 1e9)); }
 
 /// Mean of the body field over [a, b] (what a pulse over [a, b] measures).
 Eigen::Vector3d meanField(const RollingBody& body, double a, double b) {

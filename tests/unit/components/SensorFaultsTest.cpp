@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "components/common/SensorFaults.hpp"
+#include "tests/support/TestUnits.hpp"
 
 using flatsat::SensorFault;
 using flatsat::SensorFaultKind;
@@ -13,7 +14,6 @@ using flatsat::SensorFaults;
 using Vec = Eigen::Vector3d;
 
 namespace {
-constexpr std::int64_t kSecond = 1'000'000'000;
 SensorFault fault(SensorFaultKind kind, int channel, double magnitude, double start_s,
                   double duration_s) {
   return {kind, channel, magnitude, static_cast<std::int64_t>(start_s * kSecond),

@@ -7,6 +7,7 @@
 
 #include "components/star_tracker/StarTrackerModel.hpp"
 #include "tests/unit/components/SampleStats.hpp"
+#include "tests/support/TestUnits.hpp"
 
 using flatsat::star_tracker::applyError;
 using flatsat::star_tracker::StarTrackerInput;
@@ -17,7 +18,6 @@ using flatsat::test::SampleStats;
 
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr double kArcsec = kDeg / 3600.0;
 
 /// Inertial attitude with the boresight (body +z, identity mounting) 90° from nadir and the

@@ -8,12 +8,12 @@
 #include <catch2/catch.hpp>
 
 #include "components/thruster_sequencer/StationKeepingFirings.hpp"
+#include "tests/support/TestUnits.hpp"
 
 using namespace flatsat::thruster_sequencer;
 
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr double kRate = 7.2921e-5;  // [rad/s]
 
 struct Flown {

@@ -11,6 +11,7 @@
 #include "components/station_keeping/StationKeepingPlanner.hpp"
 #include "sim/Constants.hpp"
 #include "sim/KeplerOrbit.hpp"
+#include "tests/support/TestUnits.hpp"
 
 using namespace flatsat;
 using namespace flatsat::station_keeping;
@@ -19,7 +20,6 @@ using Catch::Matchers::WithinRel;
 
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr double kGmst0 = 0.3;  // [rad] Greenwich at t = 0
 const double kOmega = sim::kEarthRotationRate_rad_s;
 

@@ -15,6 +15,7 @@
 #include "sim/Constants.hpp"
 #include "sim/SunEphemeris.hpp"
 #include "sim/Time.hpp"
+#include "tests/support/TestUnits.hpp"
 
 using namespace flatsat;
 using namespace flatsat::station_keeping;
@@ -22,7 +23,6 @@ using Catch::Matchers::WithinAbs;
 
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr double kGeoRadius_m = 42164.17e3;  // (μ / ω_E²)^(1/3): one sidereal day
 constexpr std::array<PairFailure, 4> kStates{PairFailure::kNone, PairFailure::k22_28, PairFailure::k20_30,
                                              PairFailure::k24_26};

@@ -24,13 +24,13 @@
 #include "sim/OrbitPropagator.hpp"
 #include "sim/SunEphemeris.hpp"
 #include "sim/Time.hpp"
+#include "tests/support/TestUnits.hpp"
 
 using namespace flatsat;
 using namespace flatsat::station_keeping;
 
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr double kYear_s = 365.25 * 86400.0;
 constexpr double kStep_s = 600.0;
 const sim::UtcEpoch kEpoch{2027, 1, 1, 0, 0, 0.0};

@@ -10,15 +10,13 @@
 #include <Eigen/Dense>
 
 #include "components/attitude_controller/SunPointingController.hpp"
+#include "tests/support/TestUnits.hpp"
 
 using flatsat::attitude_controller::SunPointingController;
 using flatsat::attitude_controller::SunPointingControllerInput;
 using flatsat::attitude_controller::SunPointingControllerParams;
 
 namespace {
-
-constexpr double kPi = std::numbers::pi;
-constexpr double kDeg = kPi / 180.0;
 
 /// ROSAT-like pyramid: four wheels tilted by β from +x, in the xy and xz planes.
 Eigen::Matrix<double, 3, 4> pyramidAxes(double beta) {

@@ -7,6 +7,7 @@
 
 #include "components/sun_sensor/SunSensorModel.hpp"
 #include "tests/unit/components/SampleStats.hpp"
+#include "tests/support/TestUnits.hpp"
 
 using flatsat::sun_sensor::SunSensorModel;
 using flatsat::sun_sensor::SunSensorParams;
@@ -14,8 +15,6 @@ using flatsat::test::checkGaussian;
 using flatsat::test::SampleStats;
 
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 /// Unit vector at angle `off` from +x, in the plane spanned by +x and `dir`.
 Eigen::Vector3d offBoresight(double off, const Eigen::Vector3d& dir) {

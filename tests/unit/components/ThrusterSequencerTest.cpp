@@ -16,6 +16,7 @@
 #include "components/thruster_sequencer/PulseShaper.hpp"
 #include "components/thruster_sequencer/ThrusterMomentumDumping.hpp"
 #include "components/thruster_sequencer/ThrusterSelection.hpp"
+#include "tests/support/TestUnits.hpp"
 
 using namespace flatsat::thruster_sequencer;
 using flatsat::sim::ThrusterParams;
@@ -23,7 +24,6 @@ using flatsat::sim::ThrusterVector;
 
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr std::int64_t kNsPerS = 1'000'000'000;
 
 /// The seed's worked example: limits ±1 deg around 0, T1 = 10 s, T2 = 1 s.

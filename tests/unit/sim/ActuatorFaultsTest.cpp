@@ -6,12 +6,11 @@
 #include <catch2/catch.hpp>
 
 #include "sim/ActuatorFaults.hpp"
+#include "tests/support/TestUnits.hpp"
 
 using namespace flatsat::sim;
 
 namespace {
-
-constexpr std::int64_t kSecond = 1'000'000'000;
 
 ActuatorCommands commands(double scale) {
   ActuatorCommands cmd;

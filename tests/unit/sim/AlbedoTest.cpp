@@ -9,11 +9,11 @@
 
 #include "sim/Albedo.hpp"
 #include "sim/Constants.hpp"
+#include "tests/support/TestUnits.hpp"
 
 using namespace flatsat::sim;
 
 namespace {
-constexpr double kDeg = std::numbers::pi / 180.0;
 }
 
 TEST_CASE("Albedo far from the Earth follows Russell's phase law for a Lambert sphere", "[sim][albedo]") {

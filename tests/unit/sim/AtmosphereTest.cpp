@@ -13,13 +13,12 @@
 
 #include "sim/Atmosphere.hpp"
 #include "sim/Constants.hpp"
+#include "tests/support/TestUnits.hpp"
 
 using namespace flatsat::sim;
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-constexpr double kDeg = kPi / 180.0;
 const Eigen::Vector3d kSunAtEquinox = Eigen::Vector3d::UnitX();
 
 // Point on the equator at right ascension ra and height h above the ellipsoid.
@@ -39,13 +38,6 @@ double geodeticHeight(const Eigen::Vector3d& r) {
     lat = std::atan2(r.z() + e2 * n * std::sin(lat), p);
   }
   return p * std::cos(lat) + r.z() * std::sin(lat) - a * std::sqrt(1.0 - e2 * std::sin(lat) * std::sin(lat));
-}
-
-bool anyStartsWith(const std::vector<std::string>& errors, const std::string& prefix) {
-  for (const std::string& e : errors) {
-    if (e.rfind(prefix, 0) == 0) return true;
-  }
-  return false;
 }
 
 }  // namespace

@@ -5,14 +5,9 @@
 #include <catch2/catch.hpp>
 
 #include "sim/Attitude.hpp"
+#include "tests/support/TestUnits.hpp"
 
 using namespace flatsat::sim;
-
-namespace {
-
-constexpr double kPi = std::numbers::pi;
-
-}  // namespace
 
 TEST_CASE("skew builds the cross-product matrix", "[sim][attitude]") {
   const Eigen::Vector3d a(0.3, -1.2, 2.5);

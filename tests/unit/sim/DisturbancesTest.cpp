@@ -5,14 +5,9 @@
 #include <catch2/catch.hpp>
 
 #include "sim/Disturbances.hpp"
+#include "tests/support/TestUnits.hpp"
 
 using namespace flatsat::sim;
-
-namespace {
-
-constexpr double kMu = kMuEarth_m3_s2;
-
-}  // namespace
 
 TEST_CASE("gravity-gradient torque vanishes along principal axes", "[sim][disturbance]") {
   const Eigen::Matrix3d J = Eigen::Vector3d(2.0, 3.0, 4.0).asDiagonal();

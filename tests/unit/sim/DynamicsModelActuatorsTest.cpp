@@ -15,13 +15,13 @@
 #include "sim/DynamicsModel.hpp"
 #include "sim/SunEphemeris.hpp"
 #include "tests/unit/sim/PyramidWheels.hpp"
+#include "tests/support/TestUnits.hpp"
 
 using namespace flatsat::sim;
 
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
-constexpr SimTime kStep = 100'000'000;  // 0.1 s
+using test::kStep;
 
 // A 560 km sun-synchronous small satellite: a 0.6 m box of six panels with the
 // centre of mass off its centroid, a two-sided +y solar wing, a residual
@@ -92,10 +92,6 @@ Eigen::Vector3d windFromTruth(const Truth& truth) {
   return truth.q_NB.conjugate() * (air_N - truth.v_N_m_s);
 }
 
-bool has(const std::vector<std::string>& errors, const std::string& prefix) {
-  return std::any_of(errors.begin(), errors.end(), [&](const std::string& e) { return e.rfind(prefix, 0) == 0; });
-}
-
 }  // namespace
 
 TEST_CASE("DynamicsParams::validate checks panels, thrusters, flaps and the environment", "[sim][disturbances]") {
@@ -110,12 +106,12 @@ TEST_CASE("DynamicsParams::validate checks panels, thrusters, flaps and the envi
   p.body.wheel_coulomb_friction_Nm(0) = -1.0;
   const auto errors = p.validate();
   CHECK(errors.size() == 6);
-  CHECK(has(errors, "panels[2].area_m2: "));
-  CHECK(has(errors, "thrusters[1].thrust_N: "));
-  CHECK(has(errors, "flaps.lever_arm_m: "));
-  CHECK(has(errors, "density_kg_m3: "));
-  CHECK(has(errors, "residual_dipole_B_Am2: "));
-  CHECK(has(errors, "body.wheel_coulomb_friction_Nm[0]: "));
+  CHECK(anyStartsWith(errors, "panels[2].area_m2: "));
+  CHECK(anyStartsWith(errors, "thrusters[1].thrust_N: "));
+  CHECK(anyStartsWith(errors, "flaps.lever_arm_m: "));
+  CHECK(anyStartsWith(errors, "density_kg_m3: "));
+  CHECK(anyStartsWith(errors, "residual_dipole_B_Am2: "));
+  CHECK(anyStartsWith(errors, "body.wheel_coulomb_friction_Nm[0]: "));
 
   DynamicsParams crowded = fullyEquipped();
   crowded.thrusters.resize(kMaxThrusters + 1, crowded.thrusters[0]);

@@ -14,14 +14,14 @@
 #include "sim/SunEphemeris.hpp"
 #include "tests/unit/sim/AllocationCounter.hpp"
 #include "tests/unit/sim/PyramidWheels.hpp"
+#include "tests/support/TestUnits.hpp"
 
 using namespace flatsat::sim;
 using Catch::Matchers::Contains;
 
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
-constexpr SimTime kStep = 100'000'000;  // 0.1 s
+using test::kStep;
 const std::string kIgrfFile = std::string(FLATSAT_DATA_DIR) + "/igrf/igrf14coeffs.txt";
 
 // A 560 km, 53° orbit; a 1 m cube of six panels with its centre of pressure
@@ -67,10 +67,6 @@ DynamicsParams everyModel() {
 }
 
 double jdUt1(const DynamicsParams& p, const Truth& truth) { return julianDate(p.epoch) + toSeconds(truth.t) / 86400.0; }
-
-bool has(const std::vector<std::string>& errors, const std::string& prefix) {
-  return std::any_of(errors.begin(), errors.end(), [&](const std::string& e) { return e.rfind(prefix, 0) == 0; });
-}
 
 }  // namespace
 
@@ -192,16 +188,16 @@ TEST_CASE("DynamicsParams::validate checks the environment options", "[sim][dyna
   p.orbit_track.step_s = 0.0;
   auto errors = p.validate();
   CHECK(errors.size() == 3);
-  CHECK(has(errors, "field_degree: 14 must be in 1..13"));
-  CHECK(has(errors, "atmosphere.bulge_exponent: "));
-  CHECK(has(errors, "orbit_track.step_s: "));
+  CHECK(anyStartsWith(errors, "field_degree: 14 must be in 1..13"));
+  CHECK(anyStartsWith(errors, "atmosphere.bulge_exponent: "));
+  CHECK(anyStartsWith(errors, "orbit_track.step_s: "));
 
   DynamicsParams empty = everyModel();
   empty.field_harmonics = GaussCoefficients{};
   empty.atmosphere.reset();
   errors = empty.validate();
-  CHECK(has(errors, "field_harmonics: no coefficients (g10 = 0)"));
-  CHECK(has(errors, "orbit_track.forces.drag: needs an atmosphere model"));
+  CHECK(anyStartsWith(errors, "field_harmonics: no coefficients (g10 = 0)"));
+  CHECK(anyStartsWith(errors, "orbit_track.forces.drag: needs an atmosphere model"));
   CHECK_THROWS_WITH(DynamicsModel(empty), Contains("field_harmonics") && Contains("orbit_track.forces.drag"));
 }
 

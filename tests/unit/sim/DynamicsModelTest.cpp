@@ -13,14 +13,14 @@
 #include "sim/DynamicsModel.hpp"
 #include "sim/SunEphemeris.hpp"
 #include "tests/unit/sim/PyramidWheels.hpp"
+#include "tests/support/TestUnits.hpp"
 
 using namespace flatsat::sim;
 using Catch::Matchers::Contains;
 
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
-constexpr SimTime kStep = 100'000'000;  // 0.1 s
+using test::kStep;
 
 DynamicsParams sunSynchronousSmallSat() {
   DynamicsParams p;

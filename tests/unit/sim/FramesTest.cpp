@@ -10,13 +10,12 @@
 #include "sim/KeplerOrbit.hpp"
 #include "sim/SunEphemeris.hpp"
 #include "sim/Time.hpp"
+#include "tests/support/TestUnits.hpp"
 
 using namespace flatsat::sim;
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-constexpr double kDeg = kPi / 180.0;
 constexpr double kArcsec = kDeg / 3600.0;
 
 void checkRotation(const Eigen::Matrix3d& r) {

@@ -7,12 +7,12 @@
 
 #include "sim/Constants.hpp"
 #include "sim/Geodetic.hpp"
+#include "tests/support/TestUnits.hpp"
 
 using namespace flatsat::sim;
 
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
 const double kA = kEarthEquatorialRadius_m;
 const double kB = kA * (1.0 - kEarthFlattening);
 const double kE2 = kEarthFlattening * (2.0 - kEarthFlattening);

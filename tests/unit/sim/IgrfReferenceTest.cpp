@@ -7,13 +7,12 @@
 #include <catch2/catch.hpp>
 
 #include "sim/SphericalHarmonicField.hpp"
+#include "tests/support/TestUnits.hpp"
 
 using namespace flatsat::sim;
 using Catch::Matchers::Contains;
 
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 const std::string kIgrfFile = std::string(FLATSAT_DATA_DIR) + "/igrf/igrf14coeffs.txt";
 

@@ -7,20 +7,11 @@
 #include <catch2/catch.hpp>
 
 #include "sim/KeplerOrbit.hpp"
+#include "tests/support/TestUnits.hpp"
 
 using namespace flatsat::sim;
 
 namespace {
-
-constexpr double kPi = std::numbers::pi;
-constexpr double kDeg = kPi / 180.0;
-
-bool anyStartsWith(const std::vector<std::string>& errors, const std::string& prefix) {
-  for (const std::string& e : errors) {
-    if (e.rfind(prefix, 0) == 0) return true;
-  }
-  return false;
-}
 
 OrbitElements moderatelyEccentric() {
   return OrbitElements{8000e3, 0.1, 51.6 * kDeg, 30.0 * kDeg, 45.0 * kDeg, 10.0 * kDeg};

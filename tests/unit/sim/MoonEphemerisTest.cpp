@@ -6,12 +6,11 @@
 #include <catch2/catch.hpp>
 
 #include "sim/MoonEphemeris.hpp"
+#include "tests/support/TestUnits.hpp"
 
 using namespace flatsat::sim;
 
 namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 // Mean-of-date equatorial vector of ecliptic longitude λ, latitude β, distance d, with
 // the IAU 1976 mean obliquity (Lieske et al. 1977), written out here on its own.

@@ -12,12 +12,12 @@
 #include "sim/MoonEphemeris.hpp"
 #include "sim/OrbitForces.hpp"
 #include "sim/SunEphemeris.hpp"
+#include "tests/support/TestUnits.hpp"
 
 using namespace flatsat::sim;
 
 namespace {
 
-constexpr double kMu = 3.986004418e14;
 constexpr double kR = 6378136.3;
 
 // Zonal potential −(μ/r) J_n (R/r)ⁿ P_n(z/r) with the Legendre polynomials written out.
@@ -43,13 +43,6 @@ Eigen::Vector3d numericalGradient(const Eigen::Vector3d& r, int n, double j_n) {
 }
 
 Eigen::Vector3d zonal(const Eigen::Vector3d& r, int n) { return zonalAcceleration_N(r, n == 2, n == 3, n == 4); }
-
-bool anyStartsWith(const std::vector<std::string>& errors, const std::string& prefix) {
-  for (const std::string& e : errors) {
-    if (e.rfind(prefix, 0) == 0) return true;
-  }
-  return false;
-}
 
 }  // namespace
 

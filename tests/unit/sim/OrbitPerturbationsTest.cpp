@@ -7,14 +7,13 @@
 
 #include "sim/OrbitPropagator.hpp"
 #include "sim/SunEphemeris.hpp"
+#include "tests/support/TestUnits.hpp"
+#include "tests/unit/sim/OrbitState.hpp"
 
 using namespace flatsat::sim;
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-constexpr double kDeg = kPi / 180.0;
-constexpr double kMu = 3.986004418e14;
 using State = OrbitPropagator::State;
 
 OrbitForceParams centralGravityOnly() {
@@ -23,7 +22,7 @@ OrbitForceParams centralGravityOnly() {
   return p;
 }
 
-double semiMajorAxis(const State& s) { return -kMu / (2.0 * (0.5 * s.v_N_m_s.squaredNorm() - kMu / s.r_N_m.norm())); }
+using test::semiMajorAxis;
 
 // [s] Instant in [t0, t0 + dt] where `inside` turns from false to true or back, by
 // bisection on copies of the propagator taken at t0.

@@ -10,14 +10,13 @@
 
 #include "sim/OrbitPropagator.hpp"
 #include "sim/SunEphemeris.hpp"
+#include "tests/support/TestUnits.hpp"
+#include "tests/unit/sim/OrbitState.hpp"
 
 using namespace flatsat::sim;
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-constexpr double kDeg = kPi / 180.0;
-constexpr double kMu = 3.986004418e14;
 using State = OrbitPropagator::State;
 
 OrbitForceParams gravityOnly(bool j2) {
@@ -27,8 +26,8 @@ OrbitForceParams gravityOnly(bool j2) {
   return p;
 }
 
-double energy(const State& s) { return 0.5 * s.v_N_m_s.squaredNorm() - kMu / s.r_N_m.norm(); }
-double semiMajorAxis(const State& s) { return -kMu / (2.0 * energy(s)); }
+using test::energy;
+using test::semiMajorAxis;
 Eigen::Vector3d angularMomentum(const State& s) { return s.r_N_m.cross(s.v_N_m_s); }
 double raan(const State& s) {
   const Eigen::Vector3d h = angularMomentum(s);

@@ -9,13 +9,13 @@
 #include <catch2/catch.hpp>
 
 #include "sim/OrbitTrack.hpp"
+#include "tests/support/TestUnits.hpp"
 
 using namespace flatsat::sim;
 using Catch::Matchers::Contains;
 
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
 const OrbitElements kLeo{kEarthEquatorialRadius_m + 560e3, 0.001, 53.0 * kDeg, 40.0 * kDeg, 10.0 * kDeg, 0.0};
 const UtcEpoch kEpoch{2026, 3, 20, 0, 0, 0.0};
 

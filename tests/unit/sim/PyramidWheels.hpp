@@ -4,8 +4,12 @@
 #include <cmath>
 
 #include "sim/RigidBodyWheels.hpp"
+#include "sim/Time.hpp"
 
 namespace flatsat::sim::test {
+
+/// [ns] the rig's step, at which the DynamicsModel tests step.
+inline constexpr SimTime kStep = 100'000'000;
 
 /// Four 2e-3 kg m² wheels (0.01 N m, 0.3 N m s) in a pyramid about body z:
 /// axes (±√(2/3), 0, √(1/3)) and (0, ±√(2/3), √(1/3)).

@@ -8,6 +8,7 @@
 #include "sim/Attitude.hpp"
 #include "sim/RigidBodyWheels.hpp"
 #include "tests/unit/sim/PyramidWheels.hpp"
+#include "tests/support/TestUnits.hpp"
 
 using namespace flatsat::sim;
 using Catch::Matchers::Contains;
@@ -36,13 +37,6 @@ RigidBodyParams withOneWheel(const Eigen::Vector3d& axis, double inertia) {
 }
 
 const auto kNoTorque = [](double, const RigidBodyState&) { return Eigen::Vector3d::Zero().eval(); };
-
-bool anyStartsWith(const std::vector<std::string>& errors, const std::string& prefix) {
-  for (const std::string& e : errors) {
-    if (e.rfind(prefix, 0) == 0) return true;
-  }
-  return false;
-}
 
 }  // namespace
 

@@ -15,13 +15,13 @@
 #include "sim/GeomagneticField.hpp"
 #include "sim/SphericalHarmonicField.hpp"
 #include "sim/Time.hpp"
+#include "tests/support/TestUnits.hpp"
 
 using namespace flatsat::sim;
 using Catch::Matchers::Contains;
 
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
 const std::string kDataDir = FLATSAT_DATA_DIR;
 const std::string kWmmFile = kDataDir + "/wmm/WMM2025.COF";
 const std::string kIgrfFile = kDataDir + "/igrf/igrf14coeffs.txt";

@@ -11,12 +11,12 @@
 #include "sim/KeplerOrbit.hpp"
 #include "sim/SpotFieldModel.hpp"
 #include "sim/Time.hpp"
+#include "tests/support/TestUnits.hpp"
 
 using namespace flatsat::sim;
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 const std::string kIgrfFile = std::string(FLATSAT_DATA_DIR) + "/igrf/igrf14coeffs.txt";
 
 // [rad] Sun-synchronous inclination: the secular J2 drift of the node of a circular

@@ -7,12 +7,12 @@
 #include "sim/Constants.hpp"
 #include "sim/SunEphemeris.hpp"
 #include "sim/Time.hpp"
+#include "tests/support/TestUnits.hpp"
 
 using namespace flatsat::sim;
 
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr double kTtMinusUtc_d = 69.184 / 86400.0;
 
 double declination_deg(const Eigen::Vector3d& r) { return std::asin(r.z() / r.norm()) / kDeg; }

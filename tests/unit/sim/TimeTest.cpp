@@ -7,15 +7,10 @@
 #include <catch2/catch.hpp>
 
 #include "sim/Time.hpp"
+#include "tests/support/TestUnits.hpp"
 
 using namespace flatsat::sim;
 using Catch::Matchers::Contains;
-
-namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
-
-}  // namespace
 
 TEST_CASE("SimTime converts between nanoseconds and seconds", "[sim][time]") {
   static_assert(fromSeconds(2.0) == 2'000'000'000);
