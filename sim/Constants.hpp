@@ -1,7 +1,11 @@
 // SPDX-License-Identifier: Apache-2.0
 #pragma once
+#include <numbers>
 
 namespace flatsat::sim {
+
+inline constexpr double kPi = std::numbers::pi;
+inline constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
 /// [m^3/s^2] Earth gravitational parameter (WGS-84, incl. atmosphere).
 inline constexpr double kMuEarth_m3_s2 = 3.986004418e14;

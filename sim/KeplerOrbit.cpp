@@ -6,12 +6,12 @@
 
 #include <Eigen/Geometry>
 
+#include "sim/Constants.hpp"
 #include "sim/Format.hpp"
 
 namespace flatsat::sim {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 
 }  // namespace
 

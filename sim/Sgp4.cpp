@@ -10,12 +10,12 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "sim/Constants.hpp"
 #include "sim/Time.hpp"
 
 namespace flatsat::sim {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
 /// [d] Julian date of 1950 January 0.0 UTC, the origin of SGP4's epoch.
 constexpr double kJulianDate1950Jan0 = 2433281.5;
 

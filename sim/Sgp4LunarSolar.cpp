@@ -4,11 +4,11 @@
 #include <cmath>
 #include <numbers>
 
+#include "sim/Constants.hpp"
+
 namespace flatsat::sim {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-constexpr double kTwoPi = 2.0 * kPi;
 // Mean motions [rad/min] and eccentricities of the Sun's and the Moon's apparent
 // orbits (dpper and dsinit constants).
 constexpr double kZns = 1.19459e-5;

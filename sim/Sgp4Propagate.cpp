@@ -7,14 +7,13 @@
 #include <limits>
 #include <numbers>
 
+#include "sim/Constants.hpp"
 #include "sim/Format.hpp"
 #include "sim/Sgp4.hpp"
 
 namespace flatsat::sim {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-constexpr double kTwoPi = 2.0 * kPi;
 
 Sgp4::Result failure(Sgp4::Error error, const std::string& message) {
   const double nan = std::numeric_limits<double>::quiet_NaN();

@@ -4,10 +4,11 @@
 #include <cmath>
 #include <numbers>
 
+#include "sim/Constants.hpp"
+
 namespace flatsat::sim {
 namespace {
 
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
 /// [rad/min] Earth rotation rate used by SDP4 (7.29211514668855e-5 rad/s).
 constexpr double kRptim = 4.37526908801129966e-3;
 /// [min] integrator step, and step² / 2 for the second-order term.

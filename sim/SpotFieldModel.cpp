@@ -8,12 +8,12 @@
 
 #include <Eigen/Geometry>
 
+#include "sim/Constants.hpp"
 #include "sim/Format.hpp"
 
 namespace flatsat::sim {
 namespace {
 
-constexpr double kTwoPi = 2.0 * std::numbers::pi;
 // Samples per revolution for the Fourier projection: the zonal field along the orbit
 // is a trigonometric polynomial of degree ≤ 13 in u, so any K > 13 + 5 keeps degrees
 // above 5 from aliasing onto harmonics 0..5 and makes the projection exact.

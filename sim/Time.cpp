@@ -10,9 +10,10 @@
 #include "sim/Format.hpp"
 
 namespace flatsat::sim {
-namespace {
 
 bool isLeapYear(int year) { return (year % 4 == 0 && year % 100 != 0) || year % 400 == 0; }
+
+namespace {
 
 int daysInMonth(int year, int month) {
   static constexpr int kDays[12] = {31, 28, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31};

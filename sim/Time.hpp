@@ -43,6 +43,9 @@ struct UtcEpoch {
 /// @throws std::invalid_argument naming the input and what is wrong with it.
 UtcEpoch parseIso8601Utc(const std::string& text);
 
+/// Gregorian: every fourth year, but not centuries other than every fourth.
+bool isLeapYear(int year);
+
 /// [d] Julian date of a calendar epoch (Meeus, Astronomical Algorithms, Eq. 7.1;
 /// Vallado Alg. 14 gives the same for 1900–2100).
 double julianDate(const UtcEpoch& epoch);

@@ -9,6 +9,7 @@
 #include <string_view>
 
 #include "sim/Format.hpp"
+#include "sim/Time.hpp"
 
 namespace flatsat::sim {
 namespace {
@@ -159,7 +160,6 @@ void checkLayout(const std::string& line, int number, TleChecksum checksum) {
   }
 }
 
-bool isLeapYear(int year) { return (year % 4 == 0 && year % 100 != 0) || year % 400 == 0; }
 
 std::string range(double value, const char* interval) { return formatNumber(value) + " not in " + interval; }
 

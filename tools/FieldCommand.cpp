@@ -14,12 +14,12 @@
 #include "sim/Geodetic.hpp"
 #include "sim/GeomagneticField.hpp"
 #include "sim/SpotFieldModel.hpp"
+#include "tools/Conventions.hpp"
 
 namespace flatsat::tools {
 namespace {
 
 constexpr int kExitMissingData = 1;
-constexpr int kExitBadInput = 2;
 constexpr double kDeg = std::numbers::pi / 180.0;
 
 struct FieldOptions {

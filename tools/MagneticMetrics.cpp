@@ -4,11 +4,9 @@
 #include <algorithm>
 #include <cmath>
 
-namespace flatsat::tools {
+#include "tools/Conventions.hpp"
 
-namespace {
-constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
-}
+namespace flatsat::tools {
 
 void MagneticMetrics::add(double t_s, const Eigen::Quaterniond& q_NB, const Eigen::Vector3d& w_B_rad_s,
                           const Eigen::Vector3d& r_N_m, const Eigen::Vector3d& v_N_m_s,

@@ -12,13 +12,13 @@
 #include "components/magnetometer/MagnetometerNode.hpp"
 #include "components/unloading_controller/UnloadingControllerNode.hpp"
 #include "sim/DynamicsServerParams.hpp"
+#include "tools/Conventions.hpp"
 #include "tools/MagneticMetrics.hpp"
 
 namespace flatsat::tools {
 namespace {
 
 namespace fs = std::filesystem;
-constexpr int kExitBadInput = 2;
 
 struct StudyOptions {
   std::string kind;  // detumble | spin

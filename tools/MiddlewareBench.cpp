@@ -98,7 +98,7 @@ class Peers {
       const pid_t pid = pids_.back();
       ::waitpid(pid, &status, 0);
       pids_.pop_back();
-      if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) failed += " " + std::to_string(pid);
+      if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) failed.append(" ").append(std::to_string(pid));
     }
     if (!failed.empty()) throw std::runtime_error("bench peer process(es) failed:" + failed);
   }

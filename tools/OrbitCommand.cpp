@@ -12,12 +12,12 @@
 
 #include "sim/Sgp4.hpp"
 #include "sim/Tle.hpp"
+#include "tools/Conventions.hpp"
 
 namespace flatsat::tools {
 namespace {
 
 constexpr int kExitPropagationError = 1;
-constexpr int kExitBadInput = 2;
 
 struct OrbitOptions {
   std::string tle_file;

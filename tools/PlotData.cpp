@@ -14,12 +14,12 @@
 #include "bus/Topics.hpp"
 #include "components/attitude_controller/AttitudeControllerNode.hpp"
 #include "sim/DynamicsServerParams.hpp"
+#include "tools/Conventions.hpp"
 
 namespace flatsat::tools {
 
 namespace {
 
-constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
 constexpr double kTeslaToMicro = 1e6;
 
 template <const auto& Topic>

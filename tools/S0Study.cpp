@@ -14,12 +14,11 @@
 #include "sim/DynamicsModel.hpp"
 #include "sim/DynamicsServerParams.hpp"
 #include "sim/Frames.hpp"
+#include "tools/Conventions.hpp"
 
 namespace flatsat::tools {
 
 namespace {
-
-constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
 
 struct Setup {
   sim::DynamicsParams plant;

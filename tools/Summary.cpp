@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "tools/Summary.hpp"
+#include "tools/Conventions.hpp"
 #include "tools/SummaryS1.hpp"
 
 #include <algorithm>
@@ -25,8 +26,6 @@
 namespace flatsat::tools {
 
 namespace {
-
-constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
 
 struct MomentumStats {
   double start = 0.0, max = 0.0, end = 0.0;

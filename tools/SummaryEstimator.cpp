@@ -10,12 +10,12 @@
 #include "bus/Serialization.hpp"
 #include "bus/Topics.hpp"
 #include "sim/Attitude.hpp"
+#include "tools/Conventions.hpp"
 
 namespace flatsat::tools {
 
 namespace {
 
-constexpr double kRadToDeg = 180.0 / 3.14159265358979323846;
 // χ²_3 at 0.025 and 0.975 (Abramowitz & Stegun 1964, Table 26.8).
 constexpr double kNees3Low = 0.2158;
 constexpr double kNees3High = 9.3484;

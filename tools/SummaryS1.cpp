@@ -8,12 +8,11 @@
 #include "bus/Serialization.hpp"
 #include "bus/Topics.hpp"
 #include "components/thruster_sequencer/ThrusterSequencerNode.hpp"
+#include "tools/Conventions.hpp"
 
 namespace flatsat::tools {
 
 namespace {
-
-constexpr double kRadToDeg = 180.0 / std::numbers::pi;
 
 thruster_sequencer::AngleOnlyLimitCycleOutput decision(const msg::ThrusterCmd& m) {
   thruster_sequencer::AngleOnlyLimitCycleOutput out;

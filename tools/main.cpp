@@ -20,6 +20,7 @@
 #include "bus/Security.hpp"
 #include "bus/Shutdown.hpp"
 #include "components/Registry.hpp"
+#include "tools/Conventions.hpp"
 #include "tools/FieldCommand.hpp"
 #include "tools/CmdCommand.hpp"
 #include "tools/Composed.hpp"
@@ -52,7 +53,7 @@ using namespace flatsat;
 namespace {
 
 constexpr int kExitFailed = 1;
-constexpr int kExitBadInput = 2;
+using tools::kExitBadInput;
 
 /// Loads a scenario and checks every component's parameters; prints every
 /// problem and returns false when there is any.

@@ -12,7 +12,8 @@
 
 #include "sim/Constants.hpp"
 
-inline constexpr double kPi = std::numbers::pi;
+// sim's own, so that a file using namespace flatsat::sim sees one kPi, not two.
+using flatsat::sim::kPi;
 inline constexpr double kDeg = kPi / 180.0;                         ///< [rad] one degree
 inline constexpr double kMu = flatsat::sim::kMuEarth_m3_s2;        ///< [m³/s²]
 inline constexpr std::int64_t kSecond = 1'000'000'000;              ///< [ns] one second
