@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 #pragma once
-// The body of every component's main(): options, scenario, parameters,
-// bus, node, run until done or SIGINT/SIGTERM (Fast DDS examples' main).
+// The body of every component's process (<component>::runProcess, all its
+// main() calls): options, scenario, parameters, bus, node, run until done or
+// SIGINT/SIGTERM (Fast DDS examples' main).
 #include <exception>
 #include <string>
 

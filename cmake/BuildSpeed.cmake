@@ -5,8 +5,10 @@
 # group instead of once per file. A cold build (CI builds a clean clone) is
 # then much cheaper; an edit recompiles the whole group.
 # Files of one group share one translation unit: names in their anonymous
-# namespaces must differ (a clash is a compile error; keep a file out of the
-# group rather than rename). Files in no group are compiled alone.
+# namespaces must differ (a clash is a compile error). A constant several
+# files define each belongs in a header, defined once; a file whose own
+# helper merely shares a name stays out of the group. Files in no group are
+# compiled alone.
 # -DFLATSAT_UNITY=OFF compiles every file alone.
 function(flatsat_unity_group target group)
   if(NOT FLATSAT_UNITY)

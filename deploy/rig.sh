@@ -59,7 +59,7 @@ start_docker() {
 }
 
 build() {
-  cmake -S "$here" -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
+  cmake -S "$here" -B "$build" -DCMAKE_BUILD_TYPE=Release -DFLATSAT_TEST_CORES="$jobs" >/dev/null
   cmake --build "$build" -j"$jobs"
 }
 
@@ -93,8 +93,7 @@ case "$cmd" in
     build_fuzzers 30
     # The suite runs those fuzzers too (fuzz.<target>), 30 s each: the whole
     # suite then stays under 20 minutes on two cores.
-    cmake -S "$here" -B "$build" -DFLATSAT_FUZZERS_DIR="$fuzz_build/bin" -DFLATSAT_FUZZ_SECONDS=30 \
-      -DFLATSAT_TEST_CORES="$jobs" >/dev/null
+    cmake -S "$here" -B "$build" -DFLATSAT_FUZZERS_DIR="$fuzz_build/bin" -DFLATSAT_FUZZ_SECONDS=30 >/dev/null
     start_docker
     cd "$build"
     # Every test holds a core of this resource spec, so $jobs run at once, and

@@ -4,6 +4,7 @@
 
 namespace flatsat::sim {
 
+/// [rad] half a turn and a whole one.
 inline constexpr double kPi = std::numbers::pi;
 inline constexpr double kTwoPi = 2.0 * std::numbers::pi;
 

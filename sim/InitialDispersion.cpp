@@ -2,7 +2,8 @@
 #include "sim/InitialDispersion.hpp"
 
 #include <cmath>
-#include <numbers>
+
+#include "sim/Constants.hpp"
 
 namespace flatsat::sim {
 
@@ -27,7 +28,6 @@ class SplitMix64 {
 }  // namespace
 
 Tumble dispersedTumble(std::uint64_t seed, double rate_rad_s) {
-  constexpr double kTwoPi = 2.0 * std::numbers::pi;
   SplitMix64 draw(seed);
   // Shoemake, "Uniform random rotations", Graphics Gems III (1992): three
   // uniforms to a unit quaternion uniform over SO(3).

@@ -2,7 +2,6 @@
 #include "sim/KeplerOrbit.hpp"
 
 #include <cmath>
-#include <numbers>
 
 #include <Eigen/Geometry>
 
@@ -10,11 +9,6 @@
 #include "sim/Format.hpp"
 
 namespace flatsat::sim {
-namespace {
-
-
-}  // namespace
-
 std::vector<std::string> OrbitElements::validate() const {
   std::vector<std::string> errors;
   if (!std::isfinite(semi_major_axis_m) || semi_major_axis_m <= kEarthEquatorialRadius_m) {

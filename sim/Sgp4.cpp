@@ -7,7 +7,6 @@
 #include "sim/Sgp4.hpp"
 
 #include <cmath>
-#include <numbers>
 #include <stdexcept>
 
 #include "sim/Constants.hpp"

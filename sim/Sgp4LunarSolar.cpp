@@ -2,7 +2,6 @@
 #include "sim/Sgp4LunarSolar.hpp"
 
 #include <cmath>
-#include <numbers>
 
 #include "sim/Constants.hpp"
 

@@ -5,7 +5,6 @@
 // floating-point operations follow that code (see Sgp4.cpp).
 #include <cmath>
 #include <limits>
-#include <numbers>
 
 #include "sim/Constants.hpp"
 #include "sim/Format.hpp"
@@ -13,7 +12,6 @@
 
 namespace flatsat::sim {
 namespace {
-
 
 Sgp4::Result failure(Sgp4::Error error, const std::string& message) {
   const double nan = std::numeric_limits<double>::quiet_NaN();

@@ -2,7 +2,6 @@
 #include "sim/SpotFieldModel.hpp"
 
 #include <cmath>
-#include <numbers>
 #include <stdexcept>
 #include <string>
 

@@ -160,7 +160,6 @@ void checkLayout(const std::string& line, int number, TleChecksum checksum) {
   }
 }
 
-
 std::string range(double value, const char* interval) { return formatNumber(value) + " not in " + interval; }
 
 }  // namespace

@@ -20,7 +20,6 @@ namespace flatsat::tools {
 namespace {
 
 constexpr int kExitMissingData = 1;
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 struct FieldOptions {
   std::string model = "igrf14";

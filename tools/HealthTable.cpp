@@ -80,5 +80,4 @@ nlohmann::ordered_json healthTable(const std::map<std::string, HealthEntry>& ent
   return rows;
 }
 
-
 }  // namespace flatsat::tools

@@ -221,7 +221,7 @@ int runS0Study(const S0StudyOptions& o) {
       }
     }
     std::fprintf(stderr, "study s0: --form %s: must be seed, settle, settle+q or total+q\n", o.form.c_str());
-    return 2;
+    return kExitBadInput;
   }
   for (const Form& form : kForms) {
     for (const double window : {1.0, 2.0, 5.0, 10.0, 20.0, 30.0, 60.0}) {

@@ -6,7 +6,6 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
-#include <numbers>
 #include <string>
 #include <vector>
 
@@ -15,6 +14,7 @@
 #include "components/sun_sensor/SunSensorNode.hpp"
 #include "components/thruster_sequencer/AngleOnlyCase.hpp"
 #include "components/thruster_sequencer/ThrusterSequencerNode.hpp"
+#include "tools/Conventions.hpp"
 #include "tools/MagneticStudy.hpp"
 #include "tools/Quantile.hpp"
 #include "tools/RunDirectory.hpp"
@@ -26,7 +26,6 @@ namespace {
 
 namespace fs = std::filesystem;
 namespace ts = thruster_sequencer;
-constexpr double kDeg = std::numbers::pi / 180.0;
 
 struct StudyOptions {
   std::string scenario = FLATSAT_SOURCE_SCENARIO_DIR "/s1_example.yaml";

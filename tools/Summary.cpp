@@ -1,6 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "tools/Summary.hpp"
-#include "tools/Conventions.hpp"
 #include "tools/SummaryS1.hpp"
 
 #include <algorithm>
@@ -16,12 +15,13 @@
 #include "bus/Topics.hpp"
 #include "components/attitude_controller/AttitudeControllerNode.hpp"
 #include "sim/DynamicsServerParams.hpp"
-#include "tools/SummaryS0.hpp"
+#include "sim/Frames.hpp"
+#include "tools/Conventions.hpp"
+#include "tools/SummaryEstimator.hpp"
 #include "tools/SummaryMagnetic.hpp"
+#include "tools/SummaryS0.hpp"
 #include "tools/SummaryS2.hpp"
 #include "tools/SummaryS3.hpp"
-#include "sim/Frames.hpp"
-#include "tools/SummaryEstimator.hpp"
 
 namespace flatsat::tools {
 

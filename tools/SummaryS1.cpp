@@ -2,7 +2,6 @@
 #include "tools/SummaryS1.hpp"
 
 #include <algorithm>
-#include <numbers>
 
 #include "bus/Convert.hpp"
 #include "bus/Serialization.hpp"

@@ -11,13 +11,13 @@
 #include "bus/Topics.hpp"
 #include "components/station_keeping/StationKeepingNode.hpp"
 #include "sim/Constants.hpp"
+#include "tools/Conventions.hpp"
 
 namespace flatsat::tools {
 
 namespace {
 
 using TruthDef = std::remove_cvref_t<decltype(bus::topics::kTruth)>;
-constexpr double kDeg = std::numbers::pi / 180.0;
 constexpr double kYear_s = 365.25 * 86400.0;
 
 }  // namespace

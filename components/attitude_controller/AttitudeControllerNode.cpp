@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "components/attitude_controller/AttitudeControllerNode.hpp"
 
+#include <memory>
+
 #include "bus/Convert.hpp"
 #include "components/Processes.hpp"
 #include "components/common/ReferenceParams.hpp"

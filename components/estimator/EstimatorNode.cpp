@@ -1,13 +1,13 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "components/estimator/EstimatorNode.hpp"
 
-#include "components/Processes.hpp"
-#include "components/common/StateJson.hpp"
-
 #include <algorithm>
+#include <memory>
 
 #include "bus/Convert.hpp"
+#include "components/Processes.hpp"
 #include "components/common/ReferenceParams.hpp"
+#include "components/common/StateJson.hpp"
 #include "sim/DynamicsServerParams.hpp"
 #include "sim/Frames.hpp"
 
@@ -162,7 +162,6 @@ void EstimatorNode::stepS0(const bus::StepContext& ctx, const msg::GyroReading& 
   field.along_dipole_Nm(out.along_dipole_Nm);
   field_estimate_.write(field);
 }
-
 
 nlohmann::json EstimatorNode::saveState() const {
   nlohmann::json j;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <chrono>
 #include <filesystem>
+#include <memory>
 #include <thread>
 
 #include <spdlog/spdlog.h>

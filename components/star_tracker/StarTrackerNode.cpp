@@ -1,5 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "components/star_tracker/StarTrackerNode.hpp"
+
+#include <memory>
+
 #include "components/Processes.hpp"
 
 namespace flatsat::star_tracker {

@@ -2,6 +2,7 @@
 #include "components/station_keeping/StationKeepingNode.hpp"
 
 #include <cmath>
+#include <memory>
 
 #include <spdlog/spdlog.h>
 

@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numbers>
 #include <stdexcept>
 
 #include "sim/Constants.hpp"
@@ -14,7 +13,7 @@ namespace flatsat::station_keeping {
 namespace {
 
 using Effect5 = Eigen::Matrix<double, 5, 1>;
-constexpr double kPi = std::numbers::pi;
+using sim::kPi;
 
 const double kSyncRadius_m = std::cbrt(sim::kMuEarth_m3_s2 / std::pow(sim::kEarthRotationRate_rad_s, 2));
 

@@ -1,5 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "components/sun_sensor/SunSensorNode.hpp"
+
+#include <memory>
+
 #include "components/Processes.hpp"
 
 namespace flatsat::sun_sensor {

@@ -1,11 +1,12 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "components/thruster_sequencer/ThrusterSequencerNode.hpp"
 
+#include <memory>
+
+#include "bus/Convert.hpp"
 #include "components/Processes.hpp"
 #include "components/common/StateJson.hpp"
 #include "components/station_keeping/FiringTable.hpp"
-
-#include "bus/Convert.hpp"
 #include "components/sun_sensor/SunSensorNode.hpp"
 #include "sim/DynamicsServerParams.hpp"
 

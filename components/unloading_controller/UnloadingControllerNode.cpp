@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "components/unloading_controller/UnloadingControllerNode.hpp"
 
+#include <memory>
 #include <optional>
 #include <string>
 

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "components/wheel_tach/WheelTachNode.hpp"
 
+#include <memory>
+
 #include "components/Processes.hpp"
 #include "sim/DynamicsServerParams.hpp"
 

@@ -6,7 +6,6 @@
 // would clash with its neighbour's.
 #include <cmath>
 #include <cstdint>
-#include <numbers>
 #include <string>
 #include <vector>
 
@@ -14,9 +13,9 @@
 
 // sim's own, so that a file using namespace flatsat::sim sees one kPi, not two.
 using flatsat::sim::kPi;
-inline constexpr double kDeg = kPi / 180.0;                         ///< [rad] one degree
-inline constexpr double kMu = flatsat::sim::kMuEarth_m3_s2;        ///< [m³/s²]
-inline constexpr std::int64_t kSecond = 1'000'000'000;              ///< [ns] one second
+inline constexpr double kDeg = kPi / 180.0;                  ///< [rad] one degree
+inline constexpr double kMu = flatsat::sim::kMuEarth_m3_s2;  ///< [m³/s²]
+inline constexpr std::int64_t kSecond = 1'000'000'000;       ///< [ns] one second
 
 /// [ns] the nearest to t_s seconds.
 inline std::int64_t ns(double t_s) { return std::llround(t_s * 1e9); }

@@ -31,7 +31,6 @@ using test::kDefault;
 // 300 s with the pointing metrics from 100 s on, so that they see the noise.
 const std::string kShort = " --set duration_orbits=null --set duration_s=300 --set metrics.acquisition_s=100";
 
-
 /// The statistics mc_summary.json promises, computed here from the CSV's column:
 /// sample standard deviation, nearest-rank quantiles.
 void checkStats(const std::string& key, std::vector<double> v, const nlohmann::json& stats) {

@@ -10,8 +10,8 @@
 #include <Eigen/Geometry>
 
 #include "components/unloading_controller/SpinCapture.hpp"
-#include "tests/unit/components/MagneticClosedLoop.hpp"
 #include "tests/support/TestUnits.hpp"
+#include "tests/unit/components/MagneticClosedLoop.hpp"
 
 using namespace flatsat;
 using unloading_controller::Bdot;

@@ -10,9 +10,6 @@
 
 using namespace flatsat::unloading_controller;
 
-namespace {
-}
-
 TEST_CASE("coil arbiter: a window runs whole, the law resumes after it", "[coils]") {
   CoilArbiter arbiter(Eigen::Vector3d::Constant(150.0));
   const Eigen::Vector3d law(1.0, 2.0, 3.0);

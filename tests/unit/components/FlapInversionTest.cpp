@@ -3,7 +3,6 @@
 // own forward model (sim::Flaps::normalisedTorques), failed plates are replaced per the
 // derived table, and drag-only gives no torque.
 #include <cmath>
-#include <numbers>
 
 #include <catch2/catch.hpp>
 

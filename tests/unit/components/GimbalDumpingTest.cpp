@@ -3,7 +3,6 @@
 // torque, as the plant's thruster model delivers it, is −H over what is left
 // of the dump burn.
 #include <cmath>
-#include <numbers>
 
 #include <catch2/catch.hpp>
 

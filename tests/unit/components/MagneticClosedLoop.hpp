@@ -5,7 +5,6 @@
 // only torque, so the kinetic energy changes by the coils' work alone.
 #include <cmath>
 #include <functional>
-#include <numbers>
 #include <string>
 
 #include "components/unloading_controller/Bdot.hpp"

@@ -3,7 +3,6 @@
 // the quadratic extrapolation against the model evaluated at every step.
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <string>
 
 #include <catch2/catch.hpp>

@@ -6,8 +6,8 @@
 #include <catch2/catch.hpp>
 
 #include "components/star_tracker/StarTrackerModel.hpp"
-#include "tests/unit/components/SampleStats.hpp"
 #include "tests/support/TestUnits.hpp"
+#include "tests/unit/components/SampleStats.hpp"
 
 using flatsat::star_tracker::applyError;
 using flatsat::star_tracker::StarTrackerInput;

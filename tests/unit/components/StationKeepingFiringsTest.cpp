@@ -3,7 +3,6 @@
 // a finite burn centred on its right ascension; plans replace what has not
 // begun.
 #include <cmath>
-#include <numbers>
 
 #include <catch2/catch.hpp>
 

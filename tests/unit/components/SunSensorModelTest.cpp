@@ -6,8 +6,8 @@
 #include <catch2/catch.hpp>
 
 #include "components/sun_sensor/SunSensorModel.hpp"
-#include "tests/unit/components/SampleStats.hpp"
 #include "tests/support/TestUnits.hpp"
+#include "tests/unit/components/SampleStats.hpp"
 
 using flatsat::sun_sensor::SunSensorModel;
 using flatsat::sun_sensor::SunSensorParams;

@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // Earth albedo on a plate (sim/Albedo.hpp) against Russell's law for a Lambert sphere.
 #include <cmath>
-#include <numbers>
 
 #include <catch2/catch.hpp>
 
@@ -12,9 +11,6 @@
 #include "tests/support/TestUnits.hpp"
 
 using namespace flatsat::sim;
-
-namespace {
-}
 
 TEST_CASE("Albedo far from the Earth follows Russell's phase law for a Lambert sphere", "[sim][albedo]") {
   // 1000 Earth radii: the seen cap is the half sphere to 0.06 deg and the rays are parallel.

@@ -1,11 +1,9 @@
 // SPDX-License-Identifier: Apache-2.0
 // DynamicsModel with the disturbances and actuators of issue 3: panels (drag,
 // solar pressure), residual dipole, wheel friction, thrusters and S2 flaps.
-#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
-#include <numbers>
 #include <string>
 
 #include <catch2/catch.hpp>
@@ -14,8 +12,8 @@
 #include "sim/Constants.hpp"
 #include "sim/DynamicsModel.hpp"
 #include "sim/SunEphemeris.hpp"
-#include "tests/unit/sim/PyramidWheels.hpp"
 #include "tests/support/TestUnits.hpp"
+#include "tests/unit/sim/PyramidWheels.hpp"
 
 using namespace flatsat::sim;
 

@@ -1,10 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 // DynamicsModel with the environment options: spherical-harmonic field, density
 // models, the numerical orbit (with thrust) and the geodetic truth.
-#include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <numbers>
 #include <string>
 
 #include <catch2/catch.hpp>
@@ -12,9 +10,9 @@
 #include "sim/Attitude.hpp"
 #include "sim/DynamicsModel.hpp"
 #include "sim/SunEphemeris.hpp"
+#include "tests/support/TestUnits.hpp"
 #include "tests/unit/sim/AllocationCounter.hpp"
 #include "tests/unit/sim/PyramidWheels.hpp"
-#include "tests/support/TestUnits.hpp"
 
 using namespace flatsat::sim;
 using Catch::Matchers::Contains;

@@ -2,7 +2,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <numbers>
 #include <stdexcept>
 #include <string>
 
@@ -12,8 +11,8 @@
 #include "sim/Disturbances.hpp"
 #include "sim/DynamicsModel.hpp"
 #include "sim/SunEphemeris.hpp"
-#include "tests/unit/sim/PyramidWheels.hpp"
 #include "tests/support/TestUnits.hpp"
+#include "tests/unit/sim/PyramidWheels.hpp"
 
 using namespace flatsat::sim;
 using Catch::Matchers::Contains;

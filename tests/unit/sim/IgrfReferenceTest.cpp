@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // IGRF-14 against values of the official synthesis routine.
 #include <cmath>
-#include <numbers>
 #include <string>
 
 #include <catch2/catch.hpp>

@@ -1,6 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
 #include <cmath>
-#include <numbers>
 
 #include <Eigen/Geometry>
 #include <catch2/catch.hpp>

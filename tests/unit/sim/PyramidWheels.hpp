@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #pragma once
-// The small satellites of the DynamicsModel tests share one wheel set.
+// What the DynamicsModel tests share: their step and one wheel set for
+// their small satellites.
 #include <cmath>
 
 #include "sim/RigidBodyWheels.hpp"

@@ -7,8 +7,8 @@
 
 #include "sim/Attitude.hpp"
 #include "sim/RigidBodyWheels.hpp"
-#include "tests/unit/sim/PyramidWheels.hpp"
 #include "tests/support/TestUnits.hpp"
+#include "tests/unit/sim/PyramidWheels.hpp"
 
 using namespace flatsat::sim;
 using Catch::Matchers::Contains;
