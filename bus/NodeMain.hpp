@@ -4,7 +4,9 @@
 // main() calls): options, scenario, parameters, bus, node, run until done or
 // SIGINT/SIGTERM (Fast DDS examples' main).
 #include <exception>
+#include <memory>
 #include <string>
+#include <utility>
 
 #include <spdlog/spdlog.h>
 
@@ -71,6 +73,19 @@ int runNode(int argc, char** argv, const std::string& default_name, Read&& read,
     spdlog::error("{}: {}", args.name, e.what());
     return 1;
   }
+}
+
+/// runNode() of a node built as `NodeType(bus, options, params)`, as every
+/// component's is.
+template <class NodeType, class Read>
+int runNodeOf(int argc, char** argv, const std::string& default_name, Read&& read,
+              std::int32_t ownership_strength = kEmulatorStrength) {
+  return runNode(
+      argc, argv, default_name, std::forward<Read>(read),
+      [](Bus& bus, NodeOptions options, const auto& params) {
+        return std::make_unique<NodeType>(bus, std::move(options), params);
+      },
+      ownership_strength);
 }
 
 }  // namespace flatsat::bus

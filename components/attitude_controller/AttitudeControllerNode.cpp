@@ -1,8 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "components/attitude_controller/AttitudeControllerNode.hpp"
 
-#include <memory>
-
 #include "bus/Convert.hpp"
 #include "components/Processes.hpp"
 #include "components/common/ReferenceParams.hpp"
@@ -101,10 +99,7 @@ AttitudeControllerNodeParams readParams(const bus::Scenario& scenario, const bus
 }
 
 int runProcess(int argc, char** argv) {
-  return bus::runNode(argc, argv, "attitude_controller", readParams,
-                      [](bus::Bus& bus, bus::NodeOptions options, const auto& params) {
-                        return std::make_unique<AttitudeControllerNode>(bus, std::move(options), params);
-                      });
+  return bus::runNodeOf<AttitudeControllerNode>(argc, argv, "attitude_controller", readParams);
 }
 
 }  // namespace flatsat::attitude_controller

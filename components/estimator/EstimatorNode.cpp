@@ -2,7 +2,6 @@
 #include "components/estimator/EstimatorNode.hpp"
 
 #include <algorithm>
-#include <memory>
 
 #include "bus/Convert.hpp"
 #include "components/Processes.hpp"
@@ -364,10 +363,7 @@ EstimatorNodeParams readParams(const bus::Scenario& scenario, const bus::NodeArg
 }
 
 int runProcess(int argc, char** argv) {
-  return bus::runNode(argc, argv, "estimator", readParams,
-                      [](bus::Bus& bus, bus::NodeOptions options, const auto& params) {
-                        return std::make_unique<EstimatorNode>(bus, std::move(options), params);
-                      });
+  return bus::runNodeOf<EstimatorNode>(argc, argv, "estimator", readParams);
 }
 
 }  // namespace flatsat::estimator

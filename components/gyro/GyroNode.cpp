@@ -1,8 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "components/gyro/GyroNode.hpp"
 
-#include <memory>
-
 #include "components/Processes.hpp"
 
 namespace flatsat::gyro {
@@ -20,10 +18,7 @@ EmulatorParams<GyroParams> readParams(const bus::Scenario& scenario, const bus::
 }
 
 int runProcess(int argc, char** argv) {
-  return bus::runNode(argc, argv, "gyro", readParams,
-                      [](bus::Bus& bus, bus::NodeOptions options, const auto& params) {
-                        return std::make_unique<GyroNode>(bus, std::move(options), params);
-                      });
+  return bus::runNodeOf<GyroNode>(argc, argv, "gyro", readParams);
 }
 
 }  // namespace flatsat::gyro

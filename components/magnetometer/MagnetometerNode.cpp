@@ -1,8 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "components/magnetometer/MagnetometerNode.hpp"
 
-#include <memory>
-
 #include "components/Processes.hpp"
 
 namespace flatsat::magnetometer {
@@ -23,10 +21,7 @@ EmulatorParams<MagnetometerParams> readParams(const bus::Scenario& scenario, con
 }
 
 int runProcess(int argc, char** argv) {
-  return bus::runNode(argc, argv, "magnetometer", readParams,
-                      [](bus::Bus& bus, bus::NodeOptions options, const auto& params) {
-                        return std::make_unique<MagnetometerNode>(bus, std::move(options), params);
-                      });
+  return bus::runNodeOf<MagnetometerNode>(argc, argv, "magnetometer", readParams);
 }
 
 }  // namespace flatsat::magnetometer

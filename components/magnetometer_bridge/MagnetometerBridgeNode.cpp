@@ -5,7 +5,6 @@
 #include <cmath>
 #include <chrono>
 #include <filesystem>
-#include <memory>
 #include <thread>
 
 #include <spdlog/spdlog.h>
@@ -106,12 +105,8 @@ MagnetometerBridgeNodeParams readParams(const bus::Scenario& scenario, const bus
 }
 
 int runProcess(int argc, char** argv) {
-  return bus::runNode(
-      argc, argv, "magnetometer_bridge", readParams,
-      [](bus::Bus& bus, bus::NodeOptions options, const auto& params) {
-        return std::make_unique<MagnetometerBridgeNode>(bus, std::move(options), params);
-      },
-      bus::kBridgeStrength);
+  return bus::runNodeOf<MagnetometerBridgeNode>(argc, argv, "magnetometer_bridge", readParams,
+                                                bus::kBridgeStrength);
 }
 
 }  // namespace flatsat::magnetometer_bridge

@@ -9,7 +9,6 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
-#include <memory>
 #include <stdexcept>
 #include <thread>
 
@@ -113,10 +112,7 @@ MagnetometerDeviceParams readParams(const bus::Scenario& scenario, const bus::No
 }
 
 int runProcess(int argc, char** argv) {
-  return bus::runNode(argc, argv, "magnetometer_device", readParams,
-                      [](bus::Bus& bus, bus::NodeOptions options, const auto& params) {
-                        return std::make_unique<MagnetometerDeviceNode>(bus, std::move(options), params);
-                      });
+  return bus::runNodeOf<MagnetometerDeviceNode>(argc, argv, "magnetometer_device", readParams);
 }
 
 }  // namespace flatsat::magnetometer_device

@@ -181,10 +181,7 @@ RecorderParams readParams(const bus::Scenario& scenario, const bus::NodeArgs& ar
 }
 
 int runProcess(int argc, char** argv) {
-  return bus::runNode(argc, argv, "recorder", readParams,
-                      [](bus::Bus& bus, bus::NodeOptions options, const auto& params) {
-                        return std::make_unique<RecorderNode>(bus, std::move(options), params);
-                      });
+  return bus::runNodeOf<RecorderNode>(argc, argv, "recorder", readParams);
 }
 
 }  // namespace flatsat::recorder

@@ -1,8 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "components/star_tracker/StarTrackerNode.hpp"
 
-#include <memory>
-
 #include "components/Processes.hpp"
 
 namespace flatsat::star_tracker {
@@ -21,10 +19,7 @@ EmulatorParams<StarTrackerParams> readParams(const bus::Scenario& scenario, cons
 }
 
 int runProcess(int argc, char** argv) {
-  return bus::runNode(argc, argv, "star_tracker", readParams,
-                      [](bus::Bus& bus, bus::NodeOptions options, const auto& params) {
-                        return std::make_unique<StarTrackerNode>(bus, std::move(options), params);
-                      });
+  return bus::runNodeOf<StarTrackerNode>(argc, argv, "star_tracker", readParams);
 }
 
 }  // namespace flatsat::star_tracker

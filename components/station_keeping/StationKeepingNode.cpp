@@ -183,10 +183,7 @@ StationKeepingNodeParams readParams(const bus::Scenario& scenario, const bus::No
 }
 
 int runProcess(int argc, char** argv) {
-  return bus::runNode(argc, argv, "station_keeping", readParams,
-                      [](bus::Bus& bus, bus::NodeOptions options, const auto& params) {
-                        return std::make_unique<StationKeepingNode>(bus, std::move(options), params);
-                      });
+  return bus::runNodeOf<StationKeepingNode>(argc, argv, "station_keeping", readParams);
 }
 
 }  // namespace flatsat::station_keeping

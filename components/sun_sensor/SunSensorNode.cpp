@@ -1,8 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "components/sun_sensor/SunSensorNode.hpp"
 
-#include <memory>
-
 #include "components/Processes.hpp"
 
 namespace flatsat::sun_sensor {
@@ -45,10 +43,7 @@ EmulatorParams<SunSensorParams> readParams(const bus::Scenario& scenario, const 
 }
 
 int runProcess(int argc, char** argv) {
-  return bus::runNode(argc, argv, "sun_sensor", readParams,
-                      [](bus::Bus& bus, bus::NodeOptions options, const auto& params) {
-                        return std::make_unique<SunSensorNode>(bus, std::move(options), params);
-                      });
+  return bus::runNodeOf<SunSensorNode>(argc, argv, "sun_sensor", readParams);
 }
 
 }  // namespace flatsat::sun_sensor

@@ -1,8 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "components/thruster_sequencer/ThrusterSequencerNode.hpp"
 
-#include <memory>
-
 #include "bus/Convert.hpp"
 #include "components/Processes.hpp"
 #include "components/common/StateJson.hpp"
@@ -222,10 +220,7 @@ ThrusterSequencerParams readParams(const bus::Scenario& scenario, const bus::Nod
 }
 
 int runProcess(int argc, char** argv) {
-  return bus::runNode(argc, argv, "thruster_sequencer", readParams,
-                      [](bus::Bus& bus, bus::NodeOptions options, const auto& params) {
-                        return std::make_unique<ThrusterSequencerNode>(bus, std::move(options), params);
-                      });
+  return bus::runNodeOf<ThrusterSequencerNode>(argc, argv, "thruster_sequencer", readParams);
 }
 
 }  // namespace flatsat::thruster_sequencer

@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "components/unloading_controller/UnloadingControllerNode.hpp"
 
-#include <memory>
 #include <optional>
 #include <string>
 
@@ -332,10 +331,7 @@ UnloadingControllerNodeParams readParams(const bus::Scenario& scenario, const bu
 }
 
 int runProcess(int argc, char** argv) {
-  return bus::runNode(argc, argv, "unloading_controller", readParams,
-                      [](bus::Bus& bus, bus::NodeOptions options, const auto& params) {
-                        return std::make_unique<UnloadingControllerNode>(bus, std::move(options), params);
-                      });
+  return bus::runNodeOf<UnloadingControllerNode>(argc, argv, "unloading_controller", readParams);
 }
 
 }  // namespace flatsat::unloading_controller

@@ -1,8 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "components/wheel_tach/WheelTachNode.hpp"
 
-#include <memory>
-
 #include "components/Processes.hpp"
 #include "sim/DynamicsServerParams.hpp"
 
@@ -21,10 +19,7 @@ EmulatorParams<WheelTachParams> readParams(const bus::Scenario& scenario, const 
 }
 
 int runProcess(int argc, char** argv) {
-  return bus::runNode(argc, argv, "wheel_tach", readParams,
-                      [](bus::Bus& bus, bus::NodeOptions options, const auto& params) {
-                        return std::make_unique<WheelTachNode>(bus, std::move(options), params);
-                      });
+  return bus::runNodeOf<WheelTachNode>(argc, argv, "wheel_tach", readParams);
 }
 
 }  // namespace flatsat::wheel_tach
