@@ -7,6 +7,8 @@
 #include <CLI/CLI.hpp>
 #include <spdlog/sinks/stdout_color_sinks.h>
 
+#include "bus/Topics.hpp"
+
 namespace flatsat::bus {
 
 NodeArgs parseNodeArgs(int argc, char** argv, const std::string& default_name) {
@@ -22,6 +24,9 @@ NodeArgs parseNodeArgs(int argc, char** argv, const std::string& default_name) {
                "keep the state in <out>/checkpoints/ after each step (flatsat run --restart)");
   app.add_flag("--restarted", args.restarted,
                "started again mid-run (flatsat run --restart): take the state back from <out>/checkpoints/");
+  app.add_flag("--shared-memory-rig", args.shared_memory_rig,
+               "every process of this lockstep rig runs on this host with data sharing (flatsat run): "
+               "a sink reads best-effort");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -65,6 +70,24 @@ QosTuning qosTuning(const Scenario& scenario, std::int32_t ownership_strength) {
   tuning.lease = std::chrono::milliseconds(std::llround(scenario.liveliness_lease_s * 1e3));
   tuning.ownership_strength = ownership_strength;
   return tuning;
+}
+
+BusOptions processBusOptions(const Scenario& scenario, const NodeArgs& args,
+                             std::int32_t ownership_strength) {
+  BusOptions options{.domain_id = domainFromEnvironment(scenario.domain_id),
+                     .participant_name = args.name,
+                     .tuning = qosTuning(scenario, ownership_strength),
+                     .identity = args.name};
+  options.tuning.data_sharing = !args.checkpoint && !args.restarted;  // the launcher may restart it
+  useNetwork(options, networkFromEnvironment());
+  const bool lockstep = scenario.pacing == Pacing::kLockstep;
+  options.acks_over_shm = lockstep;
+  options.tuning.best_effort_readers = args.shared_memory_rig && lockstep && options.shared_memory &&
+                                       options.tuning.data_sharing && !publishesSteppedTopic(args.name);
+  if (options.tuning.best_effort_readers) {
+    spdlog::info("stepped readers best-effort: a lockstep sink whose every writer shares memory");
+  }
+  return options;
 }
 
 }  // namespace flatsat::bus

@@ -23,6 +23,10 @@ struct NodeArgs {
   std::string out_dir;   ///< run directory (recordings, logs)
   bool checkpoint = false;  ///< keep a checkpoint of the state (a run that restarts components)
   bool restarted = false;   ///< started again mid-run: take the state back from its checkpoint
+  /// Every process of this lockstep rig runs on this host with data sharing
+  /// (the launcher started them all): a sink among them reads best-effort
+  /// (QosTuning::best_effort_readers).
+  bool shared_memory_rig = false;
 };
 
 /// Parses `--scenario FILE [--name NAME] [--out DIR] [--log LEVEL]`, sets up
@@ -37,6 +41,9 @@ NodeOptions nodeOptions(const Scenario& scenario, const std::string& name);
 NodeOptions nodeOptions(const Scenario& scenario, const NodeArgs& args);
 /// The participant's QoS tuning in this scenario, at the given ownership strength.
 QosTuning qosTuning(const Scenario& scenario, std::int32_t ownership_strength);
+/// The bus of a component's process: qosTuning(), the network of the
+/// environment, and what its arguments say of the rig around it.
+BusOptions processBusOptions(const Scenario& scenario, const NodeArgs& args, std::int32_t ownership_strength);
 
 /// Loads the scenario, reads the parameters with `read(scenario, name,
 /// problems)`, builds the node with `make(bus, options, params)` and runs it.
@@ -55,14 +62,7 @@ int runNode(int argc, char** argv, const std::string& default_name, Read&& read,
       spdlog::error("{}: invalid parameters:\n{}", args.name, problems.joined());
       return 2;
     }
-    BusOptions options{.domain_id = domainFromEnvironment(scenario.domain_id),
-                       .participant_name = args.name,
-                       .tuning = qosTuning(scenario, ownership_strength),
-                       .identity = args.name};
-    options.tuning.data_sharing = !args.checkpoint && !args.restarted;  // the launcher may restart it
-    useNetwork(options, networkFromEnvironment());
-    options.acks_over_shm = scenario.pacing == Pacing::kLockstep;
-    Bus bus(options);
+    Bus bus(processBusOptions(scenario, args, ownership_strength));
     auto node = make(bus, nodeOptions(scenario, args), params);
     node->run();
     return 0;

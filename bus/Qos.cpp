@@ -57,6 +57,9 @@ dds::DataReaderQos readerQos(QosKind kind, const QosTuning& tuning) {
   common(qos, kind == QosKind::kState ? kStateReaderDepth : kSteppedDepth, tuning);
   if (kind == QosKind::kState) state(qos);
   if (kind == QosKind::kStepped) stepped(qos, tuning);
+  if (tuning.best_effort_readers && kind == QosKind::kStepped) {
+    qos.reliability().kind = dds::BEST_EFFORT_RELIABILITY_QOS;
+  }
   return qos;
 }
 

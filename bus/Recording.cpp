@@ -78,8 +78,11 @@ Recording::Recording(const std::string& path, Access access) : path_(path) {
   // up) gets it now. Without it, as after a crash, every query still
   // answers, by scanning.
   if (holdsSamples()) exec(kCreateIndex);
-  if (sqlite3_prepare_v2(db_, "INSERT INTO samples VALUES (?, ?, ?, ?, ?)", -1, &insert_,
-                         nullptr) != SQLITE_OK) {
+  const std::string one = "INSERT INTO samples VALUES (?, ?, ?, ?, ?)";
+  std::string many = one;
+  for (int i = 1; i < kRowsPerInsert; ++i) many += ", (?, ?, ?, ?, ?)";
+  if (sqlite3_prepare_v2(db_, one.c_str(), -1, &insert_, nullptr) != SQLITE_OK ||
+      sqlite3_prepare_v2(db_, many.c_str(), -1, &insert_many_, nullptr) != SQLITE_OK) {
     throw std::runtime_error(path + ": " + sqlite3_errmsg(db_));
   }
   exec("BEGIN");
@@ -105,6 +108,7 @@ Recording::~Recording() {
     sqlite3_exec(db_, "COMMIT", nullptr, nullptr, nullptr);
   }
   sqlite3_finalize(insert_);
+  sqlite3_finalize(insert_many_);
   sqlite3_close(db_);
 }
 
@@ -197,16 +201,31 @@ void Recording::Rows::add(std::string_view topic, std::uint64_t step, std::strin
 
 void Recording::store(const Rows& rows) const {
   // SQLITE_STATIC: rows.bytes outlives each sqlite3_step, so SQLite copies nothing.
-  for (const Rows::Row& row : rows.rows) {
-    const char* bytes = rows.bytes.data();
-    sqlite3_bind_text(insert_, 1, bytes + row.topic, static_cast<int>(row.topic_size), SQLITE_STATIC);
-    sqlite3_bind_int64(insert_, 2, static_cast<sqlite3_int64>(row.step));
-    sqlite3_bind_text(insert_, 3, bytes + row.source, static_cast<int>(row.source_size), SQLITE_STATIC);
-    sqlite3_bind_int64(insert_, 4, row.sim_time_ns);
-    sqlite3_bind_blob(insert_, 5, bytes + row.payload, static_cast<int>(row.payload_size), SQLITE_STATIC);
-    const int rc = sqlite3_step(insert_);
-    sqlite3_reset(insert_);
+  const char* bytes = rows.bytes.data();
+  const auto bind = [bytes](sqlite3_stmt* insert, int first, const Rows::Row& row) {
+    sqlite3_bind_text(insert, first + 1, bytes + row.topic, static_cast<int>(row.topic_size), SQLITE_STATIC);
+    sqlite3_bind_int64(insert, first + 2, static_cast<sqlite3_int64>(row.step));
+    sqlite3_bind_text(insert, first + 3, bytes + row.source, static_cast<int>(row.source_size),
+                      SQLITE_STATIC);
+    sqlite3_bind_int64(insert, first + 4, row.sim_time_ns);
+    sqlite3_bind_blob(insert, first + 5, bytes + row.payload, static_cast<int>(row.payload_size),
+                      SQLITE_STATIC);
+  };
+  const auto run = [this](sqlite3_stmt* insert) {
+    const int rc = sqlite3_step(insert);
+    sqlite3_reset(insert);
     if (rc != SQLITE_DONE) throw std::runtime_error(path_ + ": insert failed: " + sqlite3_errmsg(db_));
+  };
+  // The rows of a multi-row VALUES are inserted in their order: the rowids,
+  // the arrival order forEach(kArrival) reads, are as one row at a time.
+  std::size_t i = 0;
+  for (; i + kRowsPerInsert <= rows.rows.size(); i += kRowsPerInsert) {
+    for (int j = 0; j < kRowsPerInsert; ++j) bind(insert_many_, 5 * j, rows.rows[i + j]);
+    run(insert_many_);
+  }
+  for (; i < rows.rows.size(); ++i) {
+    bind(insert_, 0, rows.rows[i]);
+    run(insert_);
   }
 }
 

@@ -5,6 +5,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstdio>
@@ -227,6 +228,12 @@ LaunchResult launch(const bus::Scenario& scenario, const LaunchOptions& options)
   std::vector<const bus::ComponentEntry*> late;  // bridges that start after a delay
   // --restart: the time master owns simulated time and cannot come back mid-run.
   const bool may_restart = options.restart && scenario.pacing == bus::Pacing::kPaced;
+  // Every writer is here from the start: a bridge that joins later could have
+  // its first samples missed by a best-effort reader after the step 0 resend.
+  const bool shared_memory_rig =
+      options.local_processes && options.prefixes.empty() && !paced &&
+      std::all_of(scenario.components.begin(), scenario.components.end(),
+                  [](const auto& c) { return c.launched && c.start_after_s == 0.0; });
   const auto spawn = [&](Child& child) {
     const auto* kind = findComponentKind(child.name);
     std::vector<std::string> argv;
@@ -237,6 +244,7 @@ LaunchResult launch(const bus::Scenario& scenario, const LaunchOptions& options)
                              options.scenario_file, "--name", child.name, "--out",
                              options.run_dir, "--log", options.log_level});
     if (may_restart) argv.push_back(child.restarted ? "--restarted" : "--checkpoint");
+    if (shared_memory_rig) argv.push_back("--shared-memory-rig");
     child.pid = spawnLogged(argv, child.log);
     child.running = true;
     spdlog::debug("started {} (pid {})", child.name, child.pid);

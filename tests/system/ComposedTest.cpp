@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <thread>
 
@@ -51,7 +52,19 @@ std::string networkResources(pid_t pid) {
 
 TEST_CASE("a composed run records what the multi-process rig records, faster, without DDS",
           "[system][composed]") {
-  const auto processes = test::runScenario(kDefault, test::freshDir("multi"), kShort);
+  const std::string multi = test::freshDir("multi");
+  const auto processes = test::runScenario(kDefault, multi, kShort, true);
+  {
+    // The launcher started every process here: the recorder, a sink, reads
+    // best-effort (QosTuning::best_effort_readers) and still records the same.
+    std::ifstream recorder_log(multi + "/logs/recorder.log");
+    const std::string text{std::istreambuf_iterator<char>(recorder_log), {}};
+    CHECK(text.find("readers best-effort") != std::string::npos);
+    std::ifstream estimator_log(multi + "/logs/estimator.log");
+    CHECK(std::string{std::istreambuf_iterator<char>(estimator_log), {}}.find("best-effort") ==
+          std::string::npos);
+    fs::remove_all(multi);
+  }
 
   // The composed run in the background, watched while it runs: it must
   // never hold a socket or a shared-memory segment.

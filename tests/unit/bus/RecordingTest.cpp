@@ -46,6 +46,37 @@ TEST_CASE("Recording visits a topic in step order or in arrival order", "[record
   std::filesystem::remove(path.string() + "-shm");
 }
 
+TEST_CASE("Rows stored sixteen to an INSERT keep their arrival order and their payloads", "[recording]") {
+  const auto path = std::filesystem::temp_directory_path() /
+                    ("flatsat-recording-many-" + std::to_string(::getpid()) + ".sqlite");
+  std::filesystem::remove(path);
+  // 37 rows: two INSERTs of sixteen and five of one, steps out of order.
+  std::vector<std::pair<std::uint64_t, std::string>> written;
+  {
+    Recording r(path.string(), Recording::Access::kCreate);
+    for (std::uint64_t i = 0; i < 37; ++i) {
+      written.emplace_back((i * 7) % 37, i % 3 == 0 ? "bridge" : "emulator");
+      r.insert("t", written.back().first, written.back().second, static_cast<std::int64_t>(i),
+               {static_cast<std::uint8_t>(i), static_cast<std::uint8_t>(255 - i)});
+    }
+    r.commit();
+  }
+  const Recording r(path.string(), Recording::Access::kRead);
+  CHECK(visit(r, Recording::Order::kArrival) == written);
+  std::size_t matching = 0;
+  r.forEach("t", [&](std::uint64_t step, const std::string&, const std::vector<std::uint8_t>& payload) {
+    const std::uint64_t i = (step * 16) % 37;  // 16 = 7⁻¹ mod 37
+    if (payload ==
+        std::vector<std::uint8_t>{static_cast<std::uint8_t>(i), static_cast<std::uint8_t>(255 - i)}) {
+      ++matching;
+    }
+  });
+  CHECK(matching == 37);
+  std::filesystem::remove(path);
+  std::filesystem::remove(path.string() + "-wal");
+  std::filesystem::remove(path.string() + "-shm");
+}
+
 TEST_CASE("Recording finds a topic's last step and erases what came after a step", "[recording]") {
   const auto path = std::filesystem::temp_directory_path() /
                     ("flatsat-recording-erase-" + std::to_string(::getpid()) + ".sqlite");

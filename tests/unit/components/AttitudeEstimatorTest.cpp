@@ -48,14 +48,15 @@ AttitudeEstimatorInput measure(const Eigen::Quaterniond& q_NB, const Eigen::Vect
 
 /// A tumbling body (rates of a few hundredths of rad/s on all axes) seen by a biased,
 /// noise-free gyro; the rate is held over each step, which is what a gyro sample means.
-struct Scenario {
+struct EstimatorScenario {
   AttitudeEstimator estimator;
   Eigen::Quaterniond q_true = kAttitude0_NB;
   Eigen::Vector3d bias_true;
   std::int64_t t_ns = 0;
   AttitudeEstimator::Output out;
 
-  Scenario(const AttitudeEstimatorParams& p, const Eigen::Vector3d& bias) : estimator(p), bias_true(bias) {
+  EstimatorScenario(const AttitudeEstimatorParams& p, const Eigen::Vector3d& bias)
+      : estimator(p), bias_true(bias) {
     out = estimator.step(measure(q_true, rate(0.0) + bias_true, true, true), t_ns);
   }
 
@@ -148,7 +149,7 @@ TEST_CASE("Estimator integrates the gyro with the exact exponential", "[componen
 
 TEST_CASE("Estimator converges on a constant gyro bias", "[components][estimator]") {
   const Eigen::Vector3d bias(2e-3, -1e-3, 1.5e-3);
-  Scenario s(AttitudeEstimatorParams{}, bias);
+  EstimatorScenario s(AttitudeEstimatorParams{}, bias);
   REQUIRE(s.out.initialized);
   s.run(300.0, true, true);
   const double bias_error_300s = s.biasError();
@@ -156,7 +157,8 @@ TEST_CASE("Estimator converges on a constant gyro bias", "[components][estimator
   CHECK(s.biasError() < 0.01 * bias_error_300s);
   CHECK(s.biasError() < 1e-6);
   CHECK(s.attitudeError() < 1e-5);
-  CHECK((s.out.w_NB_B_rad_s - Scenario::rate(static_cast<double>(s.t_ns - kStep_ns) * 1e-9)).norm() < 1e-6);
+  CHECK((s.out.w_NB_B_rad_s - EstimatorScenario::rate(static_cast<double>(s.t_ns - kStep_ns) * 1e-9)).norm() <
+        1e-6);
   CHECK((s.out.sun_B_est_unit - s.q_true.conjugate() * kSun_N).norm() < 1e-5);
 
   GIVEN("an eclipse with no field either") {
@@ -193,7 +195,7 @@ TEST_CASE("Estimator does not overshoot after a long gap between samples", "[com
 TEST_CASE("Estimator ignores the field when use_magnetometer is off", "[components][estimator]") {
   AttitudeEstimatorParams p;
   p.use_magnetometer = false;
-  Scenario s(p, Eigen::Vector3d::Zero());
+  EstimatorScenario s(p, Eigen::Vector3d::Zero());
   REQUIRE(s.out.field_used);  // TRIAD still needs the pair
   s.run(1.0, true, true);
   CHECK(s.out.sun_used);
@@ -203,7 +205,7 @@ TEST_CASE("Estimator ignores the field when use_magnetometer is off", "[componen
 TEST_CASE("Estimator clamps the bias estimate", "[components][estimator]") {
   AttitudeEstimatorParams p;
   p.max_bias_rad_s = 5e-4;
-  Scenario s(p, Eigen::Vector3d(2e-3, 0.0, 0.0));
+  EstimatorScenario s(p, Eigen::Vector3d(2e-3, 0.0, 0.0));
   double worst = 0.0;
   for (int k = 0; k < 500; ++k) {
     s.run(1.0, true, true);
@@ -247,8 +249,8 @@ TEST_CASE("estimator without a field source initialises from the Sun alone", "[e
 TEST_CASE("a restarted estimator given the old one's state goes on exactly as if never stopped",
           "[components][estimator][restart]") {
   const Eigen::Vector3d bias(2e-3, -1e-3, 1.5e-3);
-  Scenario uninterrupted(AttitudeEstimatorParams{}, bias);
-  Scenario restarted(AttitudeEstimatorParams{}, bias);
+  EstimatorScenario uninterrupted(AttitudeEstimatorParams{}, bias);
+  EstimatorScenario restarted(AttitudeEstimatorParams{}, bias);
   uninterrupted.run(120.0, true, true);
   restarted.run(120.0, true, true);
   // Bias half learned: a fresh filter would start again from zero bias.

@@ -11,6 +11,7 @@
 #include "sim/DynamicsModel.hpp"
 #include "sim/InitialDispersion.hpp"
 #include "sim/KeplerOrbit.hpp"
+#include "tests/support/ReferenceData.hpp"
 #include "tests/support/TestUnits.hpp"
 
 namespace flatsat::test {
@@ -22,8 +23,7 @@ inline sim::DynamicsParams dawnDuskSmallSat(std::uint64_t seed, double tumble_ra
   // (sin i sin Ω, −sin i cos Ω, cos i) 8° from it — a dawn-dusk orbit.
   p.orbit = sim::OrbitElements{sim::kEarthEquatorialRadius_m + 550e3, 0.0, 98.0 * kDeg, 90.0 * kDeg, 0.0, 0.0};
   p.body.J_B_kg_m2 = Eigen::Vector3d(0.30, 0.35, 0.45).asDiagonal();  // z: major axis
-  p.field = sim::igrfDipoleAt(std::string(FLATSAT_DATA_DIR) + "/igrf/igrf14coeffs.txt",
-                              sim::decimalYear(p.epoch));
+  p.field = sim::igrfDipoleAt(kIgrfFile, sim::decimalYear(p.epoch));
   p.torquer_max_dipole_Am2 = Eigen::Vector3d::Constant(0.5);
   p.gravity_gradient = false;
   const sim::Tumble tumble = sim::dispersedTumble(seed, tumble_rate_rad_s);

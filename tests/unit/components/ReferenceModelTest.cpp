@@ -10,14 +10,13 @@
 #include "components/estimator/ReferenceModel.hpp"
 #include "sim/Constants.hpp"
 #include "sim/GeomagneticCoefficients.hpp"
+#include "tests/support/ReferenceData.hpp"
 #include "tests/support/TestUnits.hpp"
 
 using flatsat::estimator::ReferenceModel;
 using flatsat::estimator::ReferenceModelParams;
 
 namespace {
-
-const std::string kIgrfFile = std::string(FLATSAT_DATA_DIR) + "/igrf/igrf14coeffs.txt";
 
 ReferenceModelParams params(double field_node_s) {
   using namespace flatsat::sim;

@@ -43,8 +43,8 @@ TEST_CASE("S3 thrusters: thrust lines through the CM give the seed's ΔV compone
           "[s3]") {
   const GeoThrusterParams p{36.0 * kDeg, 10.0 * kDeg};
   REQUIRE(validate(p).empty());
-  CHECK(validate({0.0, 0.1}).front().rfind("cant_rad:", 0) == 0);
-  CHECK(validate({0.6, -0.1}).front().rfind("slew_rad:", 0) == 0);
+  CHECK(validate(GeoThrusterParams{0.0, 0.1}).front().rfind("cant_rad:", 0) == 0);
+  CHECK(validate(GeoThrusterParams{0.6, -0.1}).front().rfind("slew_rad:", 0) == 0);
   const auto f = [&](GeoThruster t) { return forceDirection_orbital(t, p); };
   for (const auto t : kGeoThrusters) {
     CAPTURE(nameOf(t));

@@ -10,6 +10,7 @@
 #include "sim/Attitude.hpp"
 #include "sim/DynamicsModel.hpp"
 #include "sim/SunEphemeris.hpp"
+#include "tests/support/ReferenceData.hpp"
 #include "tests/support/TestUnits.hpp"
 #include "tests/unit/sim/AllocationCounter.hpp"
 #include "tests/unit/sim/PyramidWheels.hpp"
@@ -20,7 +21,6 @@ using Catch::Matchers::Contains;
 namespace {
 
 using test::kStep;
-const std::string kIgrfFile = std::string(FLATSAT_DATA_DIR) + "/igrf/igrf14coeffs.txt";
 
 // A 560 km, 53° orbit; a 1 m cube of six panels with its centre of pressure
 // 5 cm off the centre of mass; four wheels.

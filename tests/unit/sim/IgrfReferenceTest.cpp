@@ -6,14 +6,13 @@
 #include <catch2/catch.hpp>
 
 #include "sim/SphericalHarmonicField.hpp"
+#include "tests/support/ReferenceData.hpp"
 #include "tests/support/TestUnits.hpp"
 
 using namespace flatsat::sim;
 using Catch::Matchers::Contains;
 
 namespace {
-
-const std::string kIgrfFile = std::string(FLATSAT_DATA_DIR) + "/igrf/igrf14coeffs.txt";
 
 struct Reference {
   double year;        // [yr]

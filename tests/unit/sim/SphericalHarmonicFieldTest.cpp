@@ -14,6 +14,7 @@
 #include "sim/GeomagneticField.hpp"
 #include "sim/SphericalHarmonicField.hpp"
 #include "sim/Time.hpp"
+#include "tests/support/ReferenceData.hpp"
 #include "tests/support/TestUnits.hpp"
 
 using namespace flatsat::sim;
@@ -21,9 +22,7 @@ using Catch::Matchers::Contains;
 
 namespace {
 
-const std::string kDataDir = FLATSAT_DATA_DIR;
 const std::string kWmmFile = kDataDir + "/wmm/WMM2025.COF";
-const std::string kIgrfFile = kDataDir + "/igrf/igrf14coeffs.txt";
 
 // A scratch coefficient file, removed when the test ends.
 struct TempFile {

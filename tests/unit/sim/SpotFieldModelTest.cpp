@@ -10,13 +10,12 @@
 #include "sim/KeplerOrbit.hpp"
 #include "sim/SpotFieldModel.hpp"
 #include "sim/Time.hpp"
+#include "tests/support/ReferenceData.hpp"
 #include "tests/support/TestUnits.hpp"
 
 using namespace flatsat::sim;
 
 namespace {
-
-const std::string kIgrfFile = std::string(FLATSAT_DATA_DIR) + "/igrf/igrf14coeffs.txt";
 
 // [rad] Sun-synchronous inclination: the secular J2 drift of the node of a circular
 // orbit, −(3/2) n J2 (R/a)² cos i, equals the Sun's mean motion, 2π per 365.2422

@@ -1,0 +1,57 @@
+// SPDX-License-Identifier: Apache-2.0
+// Which readers of a component's process are best-effort (bus/NodeMain.hpp
+// processBusOptions, bus/Qos.hpp QosTuning::best_effort_readers): no DDS.
+#include <catch2/catch.hpp>
+
+#include "bus/NodeMain.hpp"
+#include "bus/Qos.hpp"
+#include "tests/support/ScopedEnv.hpp"
+
+// In the library's namespace rather than `using` it: in a unity batch a
+// using-directive would reach the test files after this one.
+namespace flatsat::bus {
+namespace {
+
+namespace dds = eprosima::fastdds::dds;
+
+bool readsBestEffort(const Scenario& scenario, const NodeArgs& args) {
+  return processBusOptions(scenario, args, kEmulatorStrength).tuning.best_effort_readers;
+}
+
+}  // namespace
+
+TEST_CASE("only a lockstep sink of a rig on shared memory reads best-effort, and only its stepped topics",
+          "[bus][qos]") {
+  using test::ScopedEnv;
+  const ScopedEnv no_peers("FLATSAT_PEERS", nullptr), no_servers("FLATSAT_DISCOVERY_SERVER", nullptr),
+      no_network("FLATSAT_NETWORK", nullptr), shm("FLATSAT_SHARED_MEMORY", nullptr);
+  Scenario lockstep;
+  lockstep.pacing = Pacing::kLockstep;
+  const NodeArgs recorder{.name = "recorder", .shared_memory_rig = true};
+  CHECK(readsBestEffort(lockstep, recorder));
+  // A producer of stepped topics is waited for every step; it stays reliable.
+  CHECK_FALSE(readsBestEffort(lockstep, {.name = "estimator", .shared_memory_rig = true}));
+  // Without the launcher's word a writer may be on another host.
+  CHECK_FALSE(readsBestEffort(lockstep, {.name = "recorder"}));
+  Scenario paced = lockstep;
+  paced.pacing = Pacing::kPaced;  // no trail bounds how far the recorder lags
+  CHECK_FALSE(readsBestEffort(paced, recorder));
+  {
+    const ScopedEnv off("FLATSAT_SHARED_MEMORY", "0");
+    CHECK_FALSE(readsBestEffort(lockstep, recorder));
+  }
+
+  QosTuning tuning;
+  tuning.best_effort_readers = true;
+  CHECK(readerQos(QosKind::kStepped, tuning).reliability().kind == dds::BEST_EFFORT_RELIABILITY_QOS);
+  // Health and commands are not bounded by the trail; the time master waits
+  // for the stop grant's acknowledgements: they stay reliable.
+  CHECK(readerQos(QosKind::kProtocol, tuning).reliability().kind == dds::RELIABLE_RELIABILITY_QOS);
+  CHECK(readerQos(QosKind::kState, tuning).reliability().kind == dds::RELIABLE_RELIABILITY_QOS);
+  CHECK(readerQos(QosKind::kCommand, tuning).reliability().kind == dds::RELIABLE_RELIABILITY_QOS);
+  // Transient-local still: on matching, a data-sharing reader takes the writer's history from its pool.
+  CHECK(readerQos(QosKind::kStepped, tuning).durability().kind == dds::TRANSIENT_LOCAL_DURABILITY_QOS);
+  CHECK(readerQos(QosKind::kStepped).reliability().kind == dds::RELIABLE_RELIABILITY_QOS);
+}
+
+}  // namespace flatsat::bus
