@@ -82,8 +82,13 @@ BusOptions processBusOptions(const Scenario& scenario, const NodeArgs& args,
   useNetwork(options, networkFromEnvironment());
   const bool lockstep = scenario.pacing == Pacing::kLockstep;
   options.acks_over_shm = lockstep;
-  options.tuning.best_effort_readers = args.shared_memory_rig && lockstep && options.shared_memory &&
-                                       options.tuning.data_sharing && !publishesSteppedTopic(args.name);
+  // A sink the time master waits for (its trail bounds how far it lags), with
+  // data sharing to every writer: DDS Security turns data sharing off
+  // (FLATSAT_SECURE_DIR may reach a process the launcher was not told of).
+  const bool trailing_sink = scenario.schedule().contains(args.name) && !publishesSteppedTopic(args.name);
+  options.tuning.best_effort_readers = args.shared_memory_rig && lockstep && trailing_sink &&
+                                       options.shared_memory && options.tuning.data_sharing &&
+                                       options.security_dir.empty();
   if (options.tuning.best_effort_readers) {
     spdlog::info("stepped readers best-effort: a lockstep sink whose every writer shares memory");
   }

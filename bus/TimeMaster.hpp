@@ -106,7 +106,8 @@ class TimeMaster : public Node {
   /// A sink (a component that publishes no stepped topic: the recorder) may
   /// report StepDone(k) up to this many steps after the master closed k. No
   /// step waits on a sink's data, and its samples wait in its readers
-  /// (reliable, 64 deep) and are stored by step; the recorder commits only
+  /// (64 deep; best-effort in a rig of this host's processes,
+  /// QosTuning::best_effort_readers) and are stored by step; the recorder commits only
   /// whole steps (Recording::commitInBackgroundThrough). Its StepDone was one
   /// more hop at the end of every step's chain, and its work on a step can
   /// now overlap the next step's (issue 10). Step 0 and the final step are

@@ -24,9 +24,12 @@ TEST_CASE("only a lockstep sink of a rig on shared memory reads best-effort, and
           "[bus][qos]") {
   using test::ScopedEnv;
   const ScopedEnv no_peers("FLATSAT_PEERS", nullptr), no_servers("FLATSAT_DISCOVERY_SERVER", nullptr),
-      no_network("FLATSAT_NETWORK", nullptr), shm("FLATSAT_SHARED_MEMORY", nullptr);
+      no_network("FLATSAT_NETWORK", nullptr), shm("FLATSAT_SHARED_MEMORY", nullptr),
+      no_security("FLATSAT_SECURE_DIR", nullptr);
   Scenario lockstep;
   lockstep.pacing = Pacing::kLockstep;
+  lockstep.components = {{.name = "estimator"}, {.name = "recorder"}, {.name = "magnetometer_device"}};
+  lockstep.components.back().scheduled = false;
   const NodeArgs recorder{.name = "recorder", .shared_memory_rig = true};
   CHECK(readsBestEffort(lockstep, recorder));
   // A producer of stepped topics is waited for every step; it stays reliable.
@@ -40,6 +43,13 @@ TEST_CASE("only a lockstep sink of a rig on shared memory reads best-effort, and
     const ScopedEnv off("FLATSAT_SHARED_MEMORY", "0");
     CHECK_FALSE(readsBestEffort(lockstep, recorder));
   }
+  {
+    // DDS Security turns data sharing off, whoever set the variable.
+    const ScopedEnv secure("FLATSAT_SECURE_DIR", "/nonexistent");
+    CHECK_FALSE(readsBestEffort(lockstep, recorder));
+  }
+  // A sink nobody waits for (a device stand-in) has no trail to bound its lag.
+  CHECK_FALSE(readsBestEffort(lockstep, {.name = "magnetometer_device", .shared_memory_rig = true}));
 
   QosTuning tuning;
   tuning.best_effort_readers = true;
