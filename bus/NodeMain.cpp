@@ -25,8 +25,8 @@ NodeArgs parseNodeArgs(int argc, char** argv, const std::string& default_name) {
   app.add_flag("--restarted", args.restarted,
                "started again mid-run (flatsat run --restart): take the state back from <out>/checkpoints/");
   app.add_flag("--shared-memory-rig", args.shared_memory_rig,
-               "every process of this lockstep rig runs on this host with data sharing (flatsat run): "
-               "a sink reads best-effort");
+               "every process of this rig runs on this host, started by flatsat run: "
+               "a lockstep sink reads best-effort where it shares memory");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

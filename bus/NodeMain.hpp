@@ -23,9 +23,9 @@ struct NodeArgs {
   std::string out_dir;   ///< run directory (recordings, logs)
   bool checkpoint = false;  ///< keep a checkpoint of the state (a run that restarts components)
   bool restarted = false;   ///< started again mid-run: take the state back from its checkpoint
-  /// Every process of this lockstep rig runs on this host (the launcher
-  /// started them all, none under a prefix): a sink among them reads
-  /// best-effort where it shares memory with them (QosTuning::best_effort_readers).
+  /// Every process of this rig runs on this host (the launcher started them
+  /// all, none under a prefix): a lockstep sink among them reads best-effort
+  /// where it shares memory with them (QosTuning::best_effort_readers).
   bool shared_memory_rig = false;
 };
 

@@ -228,10 +228,14 @@ LaunchResult launch(const bus::Scenario& scenario, const LaunchOptions& options)
   std::vector<const bus::ComponentEntry*> late;  // bridges that start after a delay
   // --restart: the time master owns simulated time and cannot come back mid-run.
   const bool may_restart = options.restart && scenario.pacing == bus::Pacing::kPaced;
-  // Every writer is here from the start: a bridge that joins later could have
-  // its first samples missed by a best-effort reader after the step 0 resend.
+  // What only the launcher knows: it starts every process of the rig on this
+  // host, none under a prefix, all at the start (a bridge that joined later
+  // could have its first samples missed by a best-effort reader after the
+  // step 0 resend). A writer nobody declared, joining from another host, is
+  // not provided for (declare it: `role: external`). Each child weighs the
+  // rest itself (lockstep, shared memory, no DDS Security: processBusOptions).
   const bool shared_memory_rig =
-      options.local_processes && options.prefixes.empty() && !paced &&
+      options.prefixes.empty() &&
       std::all_of(scenario.components.begin(), scenario.components.end(),
                   [](const auto& c) { return c.launched && c.start_after_s == 0.0; });
   const auto spawn = [&](Child& child) {

@@ -33,13 +33,6 @@ struct LaunchOptions {
   /// Every component keeps a checkpoint of its state for that (bus/Checkpoint.hpp).
   bool restart = false;
   int max_restarts = 20;  ///< [-] per component and run, >= 1
-  /// No secure participants: with no prefixes either, every process the
-  /// launcher starts shares this host's memory with the others (data
-  /// sharing). With every component launched at the start and lockstep
-  /// pacing, the children hear so (`--shared-memory-rig`) and the recorder
-  /// reads best-effort. A writer that nobody declared, joining from another
-  /// host, is not provided for (declare it: `role: external`).
-  bool local_processes = true;
 };
 
 struct LaunchResult {

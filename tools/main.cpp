@@ -251,8 +251,6 @@ int run(const RunOptions& o, nlohmann::ordered_json* summary_out = nullptr) {
   launch_options.restart = o.restart;
   launch_options.max_restarts = o.max_restarts;
   if (!o.secure.empty() && !enableSecurity(o.secure, scenario)) return kExitBadInput;
-  // A secure rig keeps every reader reliable: whether protected endpoints share memory is not settled here.
-  launch_options.local_processes = o.secure.empty();
   if (o.composed && !o.quiet) {
     std::cerr << "flatsat: running '" << scenario.name << "' composed (" << scenario.components.size()
               << " components in this process, no DDS) into " << run_dir << "\n";

@@ -11,12 +11,12 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <string>
 #include <thread>
 
 #include <nlohmann/json.hpp>
 
+#include "tests/support/Background.hpp"
 #include "tests/support/Rig.hpp"
 #include "tests/support/Run.hpp"
 
@@ -57,12 +57,8 @@ TEST_CASE("a composed run records what the multi-process rig records, faster, wi
   {
     // The launcher started every process here: the recorder, a sink, reads
     // best-effort (QosTuning::best_effort_readers) and still records the same.
-    std::ifstream recorder_log(multi + "/logs/recorder.log");
-    const std::string text{std::istreambuf_iterator<char>(recorder_log), {}};
-    CHECK(text.find("readers best-effort") != std::string::npos);
-    std::ifstream estimator_log(multi + "/logs/estimator.log");
-    CHECK(std::string{std::istreambuf_iterator<char>(estimator_log), {}}.find("best-effort") ==
-          std::string::npos);
+    CHECK(test::readFile(multi + "/logs/recorder.log").find("readers best-effort") != std::string::npos);
+    CHECK(test::readFile(multi + "/logs/estimator.log").find("best-effort") == std::string::npos);
     fs::remove_all(multi);
   }
 
