@@ -10,9 +10,10 @@ namespace flatsat {
 
 /// Standard normal variates by the ziggurat method: Marsaglia & Tsang, "The
 /// Ziggurat Method for Generating Random Variables", J. Stat. Softw. 5(8),
-/// 2000, with their 256-layer constants. Exact, not an approximation: a
-/// point uniform in a layer is kept when it lies under exp(−x²/2), and the
-/// base layer's overhang is Marsaglia's (1964) tail method.
+/// 2000, with their 256-layer constants. Exact up to the tables (every
+/// layer's area is v to 1e-9), not an approximation of the density: a point
+/// uniform in a layer is kept when it lies under exp(−x²/2), and the base
+/// layer's overhang is Marsaglia's (1964) tail method.
 ///
 /// Each variate takes one 64-bit draw when it falls inside its layer's
 /// rectangle (98.5 % of them): layer from bits 0–7, sign from bit 8 and the
