@@ -36,6 +36,10 @@ Eigen::Vector3d ReferenceModel::fieldAt(const Eigen::Vector3d& r_N_m, double jd)
   return R_EN.transpose() * (harmonics_ ? harmonics_->b_E_T(r_E) : field_.b_E_T(r_E));
 }
 
+Eigen::Vector3d ReferenceModel::sunAt(double t_s) const {
+  return sim::sunPosition_N_m(jd_epoch_ + (t_s + sim::kTtMinusUtc_s) / 86400.0);
+}
+
 bool ReferenceModel::takeNodes(double t_s) {
   const double h = params_.field_node_s;
   if (h <= 0.0) return false;
@@ -43,33 +47,31 @@ bool ReferenceModel::takeNodes(double t_s) {
   if (nodes_ == 0 || node_[2].index != j) {
     // t_j <= t_s, and after every earlier call's time: the orbit is still asked in order.
     const double t_j = static_cast<double>(j) * h;
-    const FieldNode node{j, fieldAt(orbit_.at(t_j).r_N_m, jd_epoch_ + t_j / 86400.0)};
+    const Node node{j, fieldAt(orbit_.at(t_j).r_N_m, jd_epoch_ + t_j / 86400.0), sunAt(t_j)};
     node_ = {node_[1], node_[2], node};
     nodes_ = std::min(nodes_ + 1, 3);
   }
   return nodes_ == 3 && node_[0].index == j - 2 && node_[1].index == j - 1;
 }
 
-Eigen::Vector3d ReferenceModel::extrapolatedField(double t_s) const {
+Eigen::Vector3d ReferenceModel::extrapolated(double t_s, Eigen::Vector3d Node::*quantity) const {
   // Lagrange through x = −2, −1, 0 at x = τ.
   const double tau = t_s / params_.field_node_s - static_cast<double>(node_[2].index);
-  return 0.5 * tau * (tau + 1.0) * node_[0].b_N_T - tau * (tau + 2.0) * node_[1].b_N_T +
-         0.5 * (tau + 1.0) * (tau + 2.0) * node_[2].b_N_T;
+  return 0.5 * tau * (tau + 1.0) * (node_[0].*quantity) - tau * (tau + 2.0) * (node_[1].*quantity) +
+         0.5 * (tau + 1.0) * (tau + 2.0) * (node_[2].*quantity);
 }
 
 ReferenceVectors ReferenceModel::step(std::int64_t t_ns) {
   const double t_s = sim::toSeconds(t_ns);
-  const double jd = jd_epoch_ + t_s / 86400.0;
   const bool from_nodes = takeNodes(t_s);  // before orbit_.at(t_s): it may ask for t_j <= t_s
   const auto state = orbit_.at(t_s);
   const Eigen::Vector3d& r_N = state.r_N_m;
   ReferenceVectors out;
-  out.b_N_T = from_nodes ? extrapolatedField(t_s) : fieldAt(r_N, jd);
+  out.b_N_T = from_nodes ? extrapolated(t_s, &Node::b_N_T) : fieldAt(r_N, jd_epoch_ + t_s / 86400.0);
   out.orbit_normal_N_unit = r_N.cross(state.v_N_m_s).normalized();
   out.r_N_m = r_N;
   out.v_N_m_s = state.v_N_m_s;
-  out.sun_N_unit =
-      (sim::sunPosition_N_m(jd + sim::kTtMinusUtc_s / 86400.0) - r_N).normalized();
+  out.sun_N_unit = ((from_nodes ? extrapolated(t_s, &Node::r_sun_N_m) : sunAt(t_s)) - r_N).normalized();
   return out;
 }
 
