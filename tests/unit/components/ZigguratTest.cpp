@@ -11,12 +11,18 @@
 
 #include "components/common/GaussianNoise.hpp"
 #include "components/common/Ziggurat.hpp"
+#include "tests/unit/components/SampleStats.hpp"
 
 namespace flatsat {
 namespace {
 
 // Φ(x), the standard normal distribution function.
 double normalCdf(double x) { return 0.5 * std::erfc(-x / std::sqrt(2.0)); }
+
+// A count of n draws that is binomial(n, p) lies within 5 of its standard deviations.
+bool withinBinomial(int count, double n, double p) {
+  return std::abs(count - n * p) < 5.0 * std::sqrt(n * p * (1.0 - p)) + 1.0;
+}
 
 }  // namespace
 
@@ -44,12 +50,12 @@ TEST_CASE("Ziggurat draws follow N(0, 1): moments, distribution function and tai
   // tail start r (where the base layer hands over to the tail method) and beyond 4.5.
   constexpr int kEdges = 17;
   std::array<int, kEdges> below{};
-  double sum = 0.0, sum2 = 0.0, sum3 = 0.0, sum4 = 0.0;
+  test::SampleStats stats;
+  double sum3 = 0.0, sum4 = 0.0;
   int beyond_r = 0, beyond_4_5 = 0, positive = 0;
   for (int n = 0; n < kDraws; ++n) {
     const double x = Ziggurat::sample(engine);
-    sum += x;
-    sum2 += x * x;
+    stats.add(x);
     sum3 += x * x * x;
     sum4 += x * x * x * x;
     for (int e = 0; e < kEdges; ++e) below[e] += x < -4.0 + 0.5 * e ? 1 : 0;
@@ -58,9 +64,9 @@ TEST_CASE("Ziggurat draws follow N(0, 1): moments, distribution function and tai
     positive += x > 0.0 ? 1 : 0;
   }
   const double n = kDraws;
-  // Moments at 5 standard errors: Var of the sample mean 1/n, of x² 2/n, of x³ 15/n, of x⁴ 96/n.
-  CHECK(std::abs(sum / n) < 5.0 * std::sqrt(1.0 / n));
-  CHECK(std::abs(sum2 / n - 1.0) < 5.0 * std::sqrt(2.0 / n));
+  // Moments at 5 standard errors: mean and standard deviation (test::checkGaussian), and
+  // Var of the sample mean of x³ 15/n, of x⁴ 96/n.
+  test::checkGaussian(stats, 0.0, 1.0);
   CHECK(std::abs(sum3 / n) < 5.0 * std::sqrt(15.0 / n));
   CHECK(std::abs(sum4 / n - 3.0) < 5.0 * std::sqrt(96.0 / n));
   // Each count below an edge is binomial(n, Φ(edge)): within 5 of its standard deviations.
@@ -68,14 +74,12 @@ TEST_CASE("Ziggurat draws follow N(0, 1): moments, distribution function and tai
     const double edge = -4.0 + 0.5 * e;
     const double p = normalCdf(edge);
     INFO("x < " << edge);
-    CHECK(std::abs(below[e] - n * p) < 5.0 * std::sqrt(n * p * (1.0 - p)) + 1.0);
+    CHECK(withinBinomial(below[e], n, p));
   }
-  const auto within = [n](int count, double p) {
-    return std::abs(count - n * p) < 5.0 * std::sqrt(n * p * (1.0 - p)) + 1.0;
-  };
-  CHECK(within(beyond_r, std::erfc(Ziggurat::kTailStart / std::sqrt(2.0))));  // 2.58e-4: the tail method's
-  CHECK(within(beyond_4_5, std::erfc(4.5 / std::sqrt(2.0))));                 // 6.8e-6
-  CHECK(within(positive, 0.5));                                               // the sign bit
+  CHECK(withinBinomial(beyond_r, n,
+                       std::erfc(Ziggurat::kTailStart / std::sqrt(2.0))));  // 2.58e-4: the tail method's
+  CHECK(withinBinomial(beyond_4_5, n, std::erfc(4.5 / std::sqrt(2.0))));    // 6.8e-6
+  CHECK(withinBinomial(positive, n, 0.5));                                  // the sign bit
 }
 
 TEST_CASE("Gaussian noise replays its draws after reset and scales them by sigma", "[noise]") {
