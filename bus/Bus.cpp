@@ -32,6 +32,8 @@ constexpr std::uint32_t kMaxDomainId = 232;  // 7400 + 250 d + offsets must stay
 /// Participants per host that unicast discovery reaches. Each is one
 /// metatraffic port; the rig plus tools stays well below it.
 constexpr std::uint32_t kMaxLocalParticipants = 48;
+/// The watchers' partition while they are held (Bus::createReader): no writer of the rig has one.
+constexpr const char* kWatchersHeldPartition = "flatsat.watchers-held";
 
 Locator_t udpLocator(const std::string& address, std::uint32_t port) {
   Locator_t locator;
@@ -286,12 +288,23 @@ Bus::Bus(const BusOptions& options) : options_(options) {
   }
   publisher_ = participant_->create_publisher(dds::PUBLISHER_QOS_DEFAULT);
   subscriber_ = participant_->create_subscriber(dds::SUBSCRIBER_QOS_DEFAULT);
+  dds::SubscriberQos held = dds::SUBSCRIBER_QOS_DEFAULT;
+  held.partition().push_back(kWatchersHeldPartition);
+  watch_subscriber_ = participant_->create_subscriber(held);
+  if (publisher_ == nullptr || subscriber_ == nullptr || watch_subscriber_ == nullptr) {
+    throw std::runtime_error(options.participant_name + ": could not create the publisher and subscribers");
+  }
 }
 
 Bus::Bus(const BusOptions& options, LocalHub& hub) : options_(options), hub_(&hub) {}
 
 Bus::~Bus() {
   if (participant_ == nullptr) return;  // in-process
+  {
+    std::lock_guard lock(readers_mutex_);
+    closing_ = true;  // the readers still here go with delete_contained_entities
+    if (watchers_matching_) matchWatchers(false);
+  }
   participant_->delete_contained_entities();
   dds::DomainParticipantFactory::get_instance()->delete_participant(participant_);
 }
@@ -324,6 +337,70 @@ dds::Topic& Bus::topic(const std::string& name, dds::TopicDataType* type) {
   if (topic == nullptr) throw std::runtime_error("could not create topic " + name);
   topics_.emplace(name, topic);
   return *topic;
+}
+
+dds::DataReader* Bus::createReader(dds::Topic& topic, const dds::DataReaderQos& qos,
+                                   dds::DataReaderListener* listener) {
+  std::lock_guard lock(readers_mutex_);
+  ddsEntity(participant_);
+  const bool watches = !(qos.liveliness().lease_duration == eprosima::fastrtps::c_TimeInfinite);
+  holdWatchers();
+  dds::DataReader* reader =
+      (watches ? watch_subscriber_ : subscriber_)->create_datareader(&topic, qos, listener);
+  if (reader != nullptr && watches) ++watchers_;
+  releaseWatchers();
+  if (reader == nullptr) {
+    throw std::runtime_error(
+        options_.participant_name + ": could not create a reader on " + topic.get_name() +
+        (options_.security_dir.empty() || !watches
+             ? std::string()
+             : " under DDS Security: the grant must let it read in partition '" +
+                   std::string(kWatchersHeldPartition) +
+                   "', as deploy/security/make-certs.sh's grants do (make older files again)"));
+  }
+  return reader;
+}
+
+void Bus::deleteReader(dds::DataReader* reader) {
+  std::lock_guard lock(readers_mutex_);
+  const bool watches = reader->get_subscriber() == watch_subscriber_;
+  holdWatchers();
+  (watches ? watch_subscriber_ : subscriber_)->delete_datareader(reader);
+  if (watches) --watchers_;
+  releaseWatchers();
+}
+
+Bus::WatchersHeld::WatchersHeld(Bus& bus) : bus_(bus) {
+  if (bus_.hub_ != nullptr) return;
+  std::lock_guard lock(bus_.readers_mutex_);
+  bus_.holdWatchers();
+}
+
+Bus::WatchersHeld::~WatchersHeld() {
+  if (bus_.hub_ != nullptr) return;
+  std::lock_guard lock(bus_.readers_mutex_);
+  bus_.releaseWatchers();
+}
+
+void Bus::holdWatchers() {
+  if (watchers_held_++ == 0 && watchers_matching_) matchWatchers(false);
+}
+
+void Bus::releaseWatchers() {
+  if (--watchers_held_ == 0 && watchers_ > 0 && !closing_) matchWatchers(true);
+}
+
+void Bus::matchWatchers(bool match) {
+  dds::SubscriberQos qos = watch_subscriber_->get_qos();
+  qos.partition().clear();
+  if (!match) qos.partition().push_back(kWatchersHeldPartition);
+  // Fast DDS unmatches (and matches) the subscriber's readers within set_qos (EDP::updatedLocalReader).
+  if (watch_subscriber_->set_qos(qos) != ReturnCode_t::RETCODE_OK) {
+    spdlog::error("{}: could not move the liveliness watchers {} the rig's partition",
+                  options_.participant_name, match ? "into" : "out of");
+    return;
+  }
+  watchers_matching_ = match;
 }
 
 }  // namespace flatsat::bus

@@ -12,6 +12,8 @@
 
 #include <fastdds/dds/domain/DomainParticipant.hpp>
 #include <fastdds/dds/publisher/Publisher.hpp>
+#include <fastdds/dds/subscriber/DataReader.hpp>
+#include <fastdds/dds/subscriber/DataReaderListener.hpp>
 #include <fastdds/dds/subscriber/Subscriber.hpp>
 #include <fastdds/dds/topic/Topic.hpp>
 
@@ -80,8 +82,9 @@ BusNetwork networkFromEnvironment();
 /// Puts a process's network (profile, peers, servers, security) into `options`.
 void useNetwork(BusOptions& options, const BusNetwork& network);
 
-/// One DDS participant with one publisher and one subscriber; topics are
-/// created once per name and shared by every endpoint of the process.
+/// One DDS participant with one publisher and two subscribers (readers that
+/// watch their writers' liveliness, and the others: createReader); topics
+/// are created once per name and shared by every endpoint of the process.
 /// Or, in a composed rig, an in-process bus: the endpoints go to a LocalHub
 /// and no participant exists (nothing on the network or in /dev/shm).
 class Bus {
@@ -98,7 +101,6 @@ class Bus {
   /// The DDS entities; throw std::logic_error on an in-process bus.
   eprosima::fastdds::dds::DomainParticipant& participant() { return *ddsEntity(participant_); }
   eprosima::fastdds::dds::Publisher& publisher() { return *ddsEntity(publisher_); }
-  eprosima::fastdds::dds::Subscriber& subscriber() { return *ddsEntity(subscriber_); }
   std::uint32_t domainId() const { return options_.domain_id; }
   const QosTuning& tuning() const { return options_.tuning; }
 
@@ -121,7 +123,48 @@ class Bus {
   eprosima::fastdds::dds::Topic& topic(const std::string& name,
                                        eprosima::fastdds::dds::TopicDataType* type);
 
+  /// Every reader of the participant is made and deleted here. Fast DDS 2.9.1
+  /// walks the participant's list of readers (WLP::sub_liveliness_changed,
+  /// without a lock) each time a writer's liveliness changes for a reader
+  /// that watches it (a finite lease: readerQos), and grows or shifts that
+  /// list when a reader is made or deleted (WLP::add_local_reader,
+  /// remove_local_reader). A reader made during such a walk left it on freed
+  /// memory: a SIGSEGV in a dynamics server in CI, and in a recorder in 1 of
+  /// about 100 runs of a rig here. So the watchers have a subscriber of their
+  /// own, moved for the making or deleting to a partition no writer may use.
+  /// Unmatching a watcher takes the lock of the liveliness manager that a
+  /// walk on a receiving thread holds (LivelinessManager::remove_writer, its
+  /// collection lock), so the reader is made after any such walk, and with
+  /// no writer to track no new walk begins. Left open: a walk the event
+  /// thread had begun for a lease that just ran out (a writer lost at that
+  /// instant) takes no such lock. The watchers match again afterwards, and
+  /// their transient-local writers send them their history again, as to a
+  /// late joiner (bus::Input drops copies of samples it holds).
+  /// Throws std::runtime_error naming the participant and topic when Fast DDS refuses the reader.
+  eprosima::fastdds::dds::DataReader* createReader(eprosima::fastdds::dds::Topic& topic,
+                                                   const eprosima::fastdds::dds::DataReaderQos& qos,
+                                                   eprosima::fastdds::dds::DataReaderListener* listener);
+  void deleteReader(eprosima::fastdds::dds::DataReader* reader);
+
+  /// Keeps the watchers unmatched while it lives, so that a batch of
+  /// readers (a node's, made at its start or deleted at its end) costs one
+  /// rematch, not one per reader. Nothing on an in-process bus.
+  class WatchersHeld {
+   public:
+    explicit WatchersHeld(Bus& bus);
+    ~WatchersHeld();
+    WatchersHeld(const WatchersHeld&) = delete;
+    WatchersHeld& operator=(const WatchersHeld&) = delete;
+
+   private:
+    Bus& bus_;
+  };
+
  private:
+  void holdWatchers();     // with readers_mutex_ held
+  void releaseWatchers();  // with readers_mutex_ held
+  void matchWatchers(bool match);
+
   template <class Entity>
   Entity* ddsEntity(Entity* entity) const {
     if (hub_ != nullptr) {
@@ -135,6 +178,12 @@ class Bus {
   eprosima::fastdds::dds::DomainParticipant* participant_ = nullptr;
   eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
   eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;
+  eprosima::fastdds::dds::Subscriber* watch_subscriber_ = nullptr;
+  std::mutex readers_mutex_;
+  int watchers_held_ = 0;           // WatchersHeld alive, and readers being made or deleted
+  std::size_t watchers_ = 0;        // readers in watch_subscriber_
+  bool watchers_matching_ = false;  // watch_subscriber_ in the rig's partition
+  bool closing_ = false;            // ~Bus: the watchers stay unmatched
   std::mutex mutex_;
   std::map<std::string, eprosima::fastdds::dds::Topic*> topics_;
   std::atomic<std::uint64_t> samples_dropped_{0};

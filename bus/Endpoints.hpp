@@ -146,11 +146,11 @@ class Reader : private eprosima::fastdds::dds::DataReaderListener {
       local_id_ = local_->addReader(&on_sample_);
       return;
     }
-    subscriber_ = &bus.subscriber();
+    bus_ = &bus;
     auto& topic = bus.topic(std::string(def.name),
                             new GuardedType<typename Def::PubSubType>(bus.dropCounter()));
-    reader_ = subscriber_->create_datareader(&topic, readerQos(def.qos, bus.tuning()), this);
-    if (reader_ == nullptr) throw std::runtime_error("could not create a reader on " + name_);
+    reader_ =
+        bus.createReader(topic, readerQos(def.qos, bus.tuning(), static_cast<bool>(on_liveliness_)), this);
   }
   ~Reader() {
     if (local_ != nullptr) {
@@ -158,7 +158,7 @@ class Reader : private eprosima::fastdds::dds::DataReaderListener {
       return;
     }
     reader_->set_listener(nullptr);
-    subscriber_->delete_datareader(reader_);
+    bus_->deleteReader(reader_);
   }
   Reader(const Reader&) = delete;
   Reader& operator=(const Reader&) = delete;
@@ -231,7 +231,7 @@ class Reader : private eprosima::fastdds::dds::DataReaderListener {
   std::mutex sources_mutex_;
   std::string last_source_;
   std::map<eprosima::fastdds::dds::InstanceHandle_t, std::string> sources_;  // writer -> header.source
-  eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;
+  Bus* bus_ = nullptr;
   eprosima::fastdds::dds::DataReader* reader_ = nullptr;
   LocalChannel<Def>* local_ = nullptr;
   std::size_t local_id_ = 0;

@@ -5,6 +5,7 @@
 // SIGINT/SIGTERM (Fast DDS examples' main).
 #include <exception>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 
@@ -63,8 +64,13 @@ int runNode(int argc, char** argv, const std::string& default_name, Read&& read,
       return 2;
     }
     Bus bus(processBusOptions(scenario, args, ownership_strength));
+    // The node's readers are made, and at the end deleted, while its liveliness
+    // watchers are held: one rematch for all of them (Bus::createReader).
+    std::optional<Bus::WatchersHeld> held(std::in_place, bus);
     auto node = make(bus, nodeOptions(scenario, args), params);
+    held.reset();
     node->run();
+    held.emplace(bus);
     return 0;
   } catch (const ScenarioError& e) {
     spdlog::error("{}", e.what());

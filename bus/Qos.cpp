@@ -52,10 +52,10 @@ dds::DataWriterQos writerQos(QosKind kind, const QosTuning& tuning) {
   return qos;
 }
 
-dds::DataReaderQos readerQos(QosKind kind, const QosTuning& tuning) {
+dds::DataReaderQos readerQos(QosKind kind, const QosTuning& tuning, bool watch_liveliness) {
   dds::DataReaderQos qos;
   common(qos, kind == QosKind::kState ? kStateReaderDepth : kSteppedDepth, tuning);
-  if (kind == QosKind::kState) state(qos);
+  if (kind == QosKind::kState && watch_liveliness) state(qos);
   if (kind == QosKind::kStepped) stepped(qos, tuning);
   if (tuning.best_effort_readers && kind == QosKind::kStepped) {
     qos.reliability().kind = dds::BEST_EFFORT_RELIABILITY_QOS;

@@ -84,6 +84,11 @@ inline constexpr std::int32_t kEmulatorStrength = 10;
 inline constexpr std::int32_t kBridgeStrength = 100;
 
 eprosima::fastdds::dds::DataWriterQos writerQos(QosKind kind, const QosTuning& tuning = {});
-eprosima::fastdds::dds::DataReaderQos readerQos(QosKind kind, const QosTuning& tuning = {});
+/// `watch_liveliness`: a state reader that reports its writers' liveliness (a
+/// health watcher) asks for the writers' lease; every other state reader asks
+/// for none, so Fast DDS tracks no writer for it (bus::Bus::createReader says
+/// why that matters). Paced stepped readers always watch (QosTuning).
+eprosima::fastdds::dds::DataReaderQos readerQos(QosKind kind, const QosTuning& tuning = {},
+                                                bool watch_liveliness = false);
 
 }  // namespace flatsat::bus

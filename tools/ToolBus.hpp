@@ -109,7 +109,8 @@ struct Arrival {
 /// best-effort reader never acknowledges, so attaching a tool adds no
 /// protocol work to a rig in lockstep. State and command topics keep their
 /// transient-local history: the last health of every component is the point.
-eprosima::fastdds::dds::DataReaderQos tapQos(bus::QosKind kind);
+/// `watch_liveliness` as bus::readerQos's.
+eprosima::fastdds::dds::DataReaderQos tapQos(bus::QosKind kind, bool watch_liveliness);
 
 /// A typed reader of one registry topic for tools; the callback runs on a
 /// Fast DDS thread.
@@ -124,21 +125,18 @@ class Tap : private eprosima::fastdds::dds::DataReaderListener {
   Tap(ToolBus& tool_bus, const Def& def, Callback on_sample, LivelinessCallback on_liveliness = {})
       : on_sample_(std::move(on_sample)),
         on_liveliness_(std::move(on_liveliness)),
-        subscriber_(tool_bus.bus().subscriber()),
+        bus_(tool_bus.bus()),
         subscribed_ns_(std::chrono::duration_cast<std::chrono::nanoseconds>(
                            std::chrono::system_clock::now().time_since_epoch())
                            .count()) {
     auto& topic = tool_bus.bus().topic(std::string(def.name),
                                        new bus::GuardedType<typename Def::PubSubType>(
                                                      tool_bus.bus().dropCounter()));
-    reader_ = subscriber_.create_datareader(&topic, tapQos(def.qos), this);
-    if (reader_ == nullptr) {
-      throw std::runtime_error("could not create a reader on " + std::string(def.name));
-    }
+    reader_ = bus_.createReader(topic, tapQos(def.qos, static_cast<bool>(on_liveliness_)), this);
   }
   ~Tap() override {
     reader_->set_listener(nullptr);
-    subscriber_.delete_datareader(reader_);
+    bus_.deleteReader(reader_);
   }
   Tap(const Tap&) = delete;
   Tap& operator=(const Tap&) = delete;
@@ -165,7 +163,7 @@ class Tap : private eprosima::fastdds::dds::DataReaderListener {
 
   Callback on_sample_;
   LivelinessCallback on_liveliness_;
-  eprosima::fastdds::dds::Subscriber& subscriber_;
+  bus::Bus& bus_;
   std::int64_t subscribed_ns_;  ///< [ns] system clock, as the writers' source timestamps
   eprosima::fastdds::dds::DataReader* reader_ = nullptr;
 };

@@ -88,11 +88,15 @@ for id in "${identities[@]}"; do
     2>/dev/null
   rm -f "$own/cert.csr"
   # The grant (DDS-Security 1.1 §9.4.1.3): rules apply in order, the first match wins.
+  # Readers read in the default partition, where every writer of the rig is, and in the one a
+  # process holds its liveliness watchers in while it makes or deletes a reader
+  # (bus::Bus::createReader; no writer is allowed there).
+  subscribe_partitions="<partitions><partition></partition><partition>flatsat.watchers-held</partition></partitions>"
   if [ "$id" = operator ]; then
-    rules="<allow_rule>$domains<publish><topics><topic>*</topic></topics></publish><subscribe><topics><topic>*</topic></topics></subscribe></allow_rule>"
+    rules="<allow_rule>$domains<publish><topics><topic>*</topic></topics></publish><subscribe><topics><topic>*</topic></topics>$subscribe_partitions</subscribe></allow_rule>"
   else
     rules="<deny_rule>$domains<publish><topics>$(topic_list "${command_topics[@]}")</topics></publish></deny_rule>"
-    rules+="<allow_rule>$domains<publish><topics><topic>*</topic></topics></publish><subscribe><topics><topic>*</topic></topics></subscribe></allow_rule>"
+    rules+="<allow_rule>$domains<publish><topics><topic>*</topic></topics></publish><subscribe><topics><topic>*</topic></topics>$subscribe_partitions</subscribe></allow_rule>"
   fi
   cat > "$own/permissions.xml" <<XML
 <?xml version="1.0" encoding="utf-8"?>
