@@ -17,21 +17,11 @@
 #include "bus/Endpoints.hpp"
 #include "bus/Topics.hpp"
 #include "tests/support/Background.hpp"
+#include "tests/support/HealthSample.hpp"
 #include "tests/support/TestDomain.hpp"
 #include "tests/support/Within.hpp"
 
-namespace {
-
 using namespace flatsat;
-
-msg::Health healthOf(const std::string& source, std::uint64_t steps) {
-  msg::Health h;
-  bus::setText(h.header().source(), source);
-  h.steps_done(steps);
-  return h;
-}
-
-}  // namespace
 
 TEST_CASE("a liveliness watcher is unmatched while a reader is made, then hears its writers again",
           "[component][dds][watchers]") {
@@ -39,7 +29,7 @@ TEST_CASE("a liveliness watcher is unmatched while a reader is made, then hears 
   bus::Bus writer_bus({.domain_id = domain, .participant_name = "gyro"});
   bus::Bus bus({.domain_id = domain, .participant_name = "watcher"});
   bus::WriterOf<bus::topics::kHealth> health(writer_bus, bus::topics::kHealth);
-  health.write(healthOf("gyro", 1));
+  health.write(test::healthSample("gyro", 1));
   health.assertLiveliness();
 
   std::atomic<std::uint64_t> last_steps{0};
@@ -58,7 +48,7 @@ TEST_CASE("a liveliness watcher is unmatched while a reader is made, then hears 
     CHECK(watcher.matchedWriters() == 0);  // unmatched within the hold, not some time later
     plain = std::make_unique<bus::ReaderOf<bus::topics::kFaultEvent>>(
         bus, bus::topics::kFaultEvent, [&](const msg::FaultEvent&) { ++events; });
-    health.write(healthOf("gyro", 2));  // written while the watcher is out of the partition
+    health.write(test::healthSample("gyro", 2));  // written while the watcher is out of the partition
     health.assertLiveliness();
     CHECK(watcher.matchedWriters() == 0);
   }
@@ -74,7 +64,7 @@ TEST_CASE("a liveliness watcher is unmatched while a reader is made, then hears 
   // A reader deleted without a hold of the caller's is held for by the bus all the same.
   plain.reset();
   CHECK(test::within(5.0, [&] { return watcher.matchedWriters() == 1; }));
-  health.write(healthOf("gyro", 3));
+  health.write(test::healthSample("gyro", 3));
   CHECK(test::within(5.0, [&] { return last_steps == 3; }));
 }
 

@@ -12,6 +12,7 @@
 #include "bus/LocalHub.hpp"
 #include "bus/Stamp.hpp"
 #include "bus/Topics.hpp"
+#include "tests/support/HealthSample.hpp"
 
 using namespace flatsat;
 namespace topics = bus::topics;
@@ -22,13 +23,6 @@ bus::BusOptions options(const std::string& name) {
   bus::BusOptions o;
   o.participant_name = name;
   return o;
-}
-
-msg::Health health(const std::string& source, std::uint64_t steps) {
-  msg::Health h;
-  bus::setText(h.header().source(), source);
-  h.steps_done(steps);
-  return h;
 }
 
 }  // namespace
@@ -42,14 +36,14 @@ TEST_CASE("an in-process write reaches every reader of the topic before it retur
   bus::ReaderOf<topics::kHealth> r2(b, topics::kHealth, [&](const msg::Health& h) { second.push_back(h.steps_done()); });
   CHECK(writer.matchedReaders() == 2);
   CHECK(r1.matchedWriters() == 1);
-  writer.write(health("w", 7));
+  writer.write(test::healthSample("w", 7));
   CHECK(first == std::vector<std::uint64_t>{7});
   CHECK(second == std::vector<std::uint64_t>{7});
   CHECK(writer.waitForAcknowledgments(std::chrono::milliseconds(0)));
   // Another topic's readers see nothing.
   int faults = 0;
   bus::ReaderOf<topics::kFaultCmd> other(a, topics::kFaultCmd, [&](const msg::FaultCmd&) { ++faults; });
-  writer.write(health("w", 8));
+  writer.write(test::healthSample("w", 8));
   CHECK(faults == 0);
   CHECK(other.matchedWriters() == 0);
 }
@@ -59,7 +53,7 @@ TEST_CASE("a reader created later gets what a transient-local writer keeps, as i
   bus::Bus bus(options("x"), hub);
   // Health (kState): the writer keeps its last sample (depth 1).
   bus::WriterOf<topics::kHealth> state(bus, topics::kHealth);
-  for (std::uint64_t i = 1; i <= 3; ++i) state.write(health("x", i));
+  for (std::uint64_t i = 1; i <= 3; ++i) state.write(test::healthSample("x", i));
   std::vector<std::uint64_t> late;
   bus::ReaderOf<topics::kHealth> reader(bus, topics::kHealth, [&](const msg::Health& h) { late.push_back(h.steps_done()); });
   CHECK(late == std::vector<std::uint64_t>{3});
@@ -94,7 +88,7 @@ TEST_CASE("a sealed hub keeps nothing for late readers and refuses one", "[bus][
   std::vector<std::uint64_t> seen;
   bus::ReaderOf<topics::kHealth> reader(bus, topics::kHealth, [&](const msg::Health& h) { seen.push_back(h.steps_done()); });
   hub.seal();
-  for (std::uint64_t i = 1; i <= 3; ++i) state.write(health("x", i));
+  for (std::uint64_t i = 1; i <= 3; ++i) state.write(test::healthSample("x", i));
   CHECK(seen == std::vector<std::uint64_t>{1, 2, 3});  // delivery goes on
   const auto late = [&] {
     bus::ReaderOf<topics::kHealth> r(bus, topics::kHealth, [](const msg::Health&) {});
