@@ -292,6 +292,8 @@ Bus::Bus(const BusOptions& options) : options_(options) {
   held.partition().push_back(kWatchersHeldPartition);
   watch_subscriber_ = participant_->create_subscriber(held);
   if (publisher_ == nullptr || subscriber_ == nullptr || watch_subscriber_ == nullptr) {
+    participant_->delete_contained_entities();
+    dds::DomainParticipantFactory::get_instance()->delete_participant(participant_);
     throw std::runtime_error(options.participant_name + ": could not create the publisher and subscribers");
   }
 }
