@@ -277,8 +277,9 @@ Bus::Bus(const BusOptions& options) : options_(options) {
     addSecurity(qos, options.security_dir,
                 options.identity.empty() ? options.participant_name : options.identity);
   }
+  // Listening from the creation on: a peer discovered before a listener was set would stay nameless.
   participant_ = dds::DomainParticipantFactory::get_instance()->create_participant(
-      options.domain_id, qos);
+      options.domain_id, qos, this, dds::StatusMask::none());
   if (participant_ == nullptr) {
     throw std::runtime_error(
         "could not create a DDS participant on domain " + std::to_string(options.domain_id) +
@@ -308,7 +309,26 @@ Bus::~Bus() {
     if (watchers_matching_) matchWatchers(false);
   }
   participant_->delete_contained_entities();
+  participant_->set_listener(nullptr);
   dds::DomainParticipantFactory::get_instance()->delete_participant(participant_);
+}
+
+void Bus::on_participant_discovery(dds::DomainParticipant*,
+                                   eprosima::fastrtps::rtps::ParticipantDiscoveryInfo&& info) {
+  using Info = eprosima::fastrtps::rtps::ParticipantDiscoveryInfo;
+  std::lock_guard lock(participants_mutex_);
+  if (info.status == Info::DISCOVERED_PARTICIPANT || info.status == Info::CHANGED_QOS_PARTICIPANT) {
+    participants_[info.info.m_guid.guidPrefix] = info.info.m_participantName.to_string();
+  } else {
+    participants_.erase(info.info.m_guid.guidPrefix);
+  }
+}
+
+std::optional<std::string> Bus::participantName(const eprosima::fastrtps::rtps::GuidPrefix_t& prefix) const {
+  if (participant_ != nullptr && participant_->guid().guidPrefix == prefix) return options_.participant_name;
+  std::lock_guard lock(participants_mutex_);
+  if (const auto it = participants_.find(prefix); it != participants_.end()) return it->second;
+  return std::nullopt;
 }
 
 void Bus::countDroppedSample(const char* type_name) {

@@ -6,11 +6,13 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include <fastdds/dds/domain/DomainParticipant.hpp>
+#include <fastdds/dds/domain/DomainParticipantListener.hpp>
 #include <fastdds/dds/publisher/Publisher.hpp>
 #include <fastdds/dds/subscriber/DataReader.hpp>
 #include <fastdds/dds/subscriber/DataReaderListener.hpp>
@@ -87,7 +89,7 @@ void useNetwork(BusOptions& options, const BusNetwork& network);
 /// are created once per name and shared by every endpoint of the process.
 /// Or, in a composed rig, an in-process bus: the endpoints go to a LocalHub
 /// and no participant exists (nothing on the network or in /dev/shm).
-class Bus {
+class Bus : private eprosima::fastdds::dds::DomainParticipantListener {
  public:
   explicit Bus(const BusOptions& options);
   /// In-process: domain and network in `options` are unused; `hub` outlives the bus.
@@ -112,6 +114,13 @@ class Bus {
   std::function<void(const char*)> dropCounter() {
     return [this](const char* type_name) { countDroppedSample(type_name); };
   }
+
+  /// The name a discovered participant gave itself (its component's name in a
+  /// rig); nothing when it is unknown or gone. Names are what a writer's
+  /// producer is checked against (Reader's trust): on an open bus anyone may
+  /// take any name, and DDS Security's grants are what make them binding.
+  /// A tool that sets a participant listener of its own (ToolBus) has none.
+  std::optional<std::string> participantName(const eprosima::fastrtps::rtps::GuidPrefix_t& prefix) const;
 
   /// Commands this participant refused (bus::CommandAcks), for health.
   std::uint64_t commandsRefused() const { return commands_refused_.load(); }
@@ -186,6 +195,10 @@ class Bus {
   bool closing_ = false;            // ~Bus: the watchers stay unmatched
   std::mutex mutex_;
   std::map<std::string, eprosima::fastdds::dds::Topic*> topics_;
+  void on_participant_discovery(eprosima::fastdds::dds::DomainParticipant*,
+                                eprosima::fastrtps::rtps::ParticipantDiscoveryInfo&& info) override;
+  mutable std::mutex participants_mutex_;
+  std::map<eprosima::fastrtps::rtps::GuidPrefix_t, std::string> participants_;  // discovered, by GUID prefix
   std::atomic<std::uint64_t> samples_dropped_{0};
   std::atomic<std::uint64_t> commands_refused_{0};
 };

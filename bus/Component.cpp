@@ -9,6 +9,7 @@ Component::Component(Bus& bus, NodeOptions options)
     : Node(bus, std::move(options)),
       grant_reader_(bus, topics::kStepGrant,
                     [this](const msg::StepGrant& grant) {
+                      granted(grant.header().step());
                       {
                         const auto lock = lockIfThreaded();
                         if (grant_observer_) grant_observer_(grant);
@@ -17,7 +18,8 @@ Component::Component(Bus& bus, NodeOptions options)
                                            grant.step_period_ns(), grant.stop()});
                       }
                       notify();
-                    }),
+                    },
+                    {}, {}, trustFor(topics::kStepGrant)),
       done_(bus, topics::kStepDone) {}
 
 void Component::run() {
@@ -119,6 +121,7 @@ Component::Turn Component::turn() {
 
 bool Component::handle(const Grant& grant, bool inputs_in) {
   if (grant.stop) return false;
+  throwIfFatal();
   const StepContext ctx{grant.step, grant.sim_time_ns, grant.period_ns};
   if (granted_ && ctx.step <= *granted_) {  // granted again after a stall (kResendAfter)
     rewriteOutputs();
@@ -183,6 +186,7 @@ Component::Grant Component::nextGrant() {
     return false;
   });
   while (grants_.empty()) {
+    throwIfFatal();
     if (interrupted()) throw NodeFailure(name() + ": interrupted");
     if (std::chrono::steady_clock::now() > deadline) {
       throw NodeFailure(name() + ": no step grant from the time master for " +

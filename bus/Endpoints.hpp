@@ -1,12 +1,15 @@
 // SPDX-License-Identifier: Apache-2.0
 #pragma once
+#include <algorithm>
 #include <chrono>
 #include <functional>
 #include <map>
 #include <mutex>
 #include <optional>
+#include <sstream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <fastdds/dds/publisher/DataWriter.hpp>
@@ -115,6 +118,20 @@ class Writer {
   std::size_t local_id_ = 0;
 };
 
+/// Whose samples a reader takes: writers of participants named in
+/// `producers` (a rig's participants bear their component's name). Empty: any
+/// writer's. Every sample of another writer is dropped and reported to
+/// `on_foreign` (on a Fast DDS thread) with the writer's GUID, its
+/// participant's name ("" when unknown) and whether it is that writer's first.
+struct WriterTrust {
+  std::vector<std::string> producers;
+  /// A topic every component writes (StepDone, health): a sample is taken
+  /// only when its header.source names the writer's own participant (or the
+  /// participant is one of `producers`, which may write for anyone).
+  bool source_is_participant = false;
+  std::function<void(const std::string& writer_guid, const std::string& participant, bool first)> on_foreign;
+};
+
 /// Typed reader for one registry topic; every valid sample is handed to a
 /// callback on a Fast DDS thread. A sample that does not decode is dropped
 /// and counted in the bus (GuardedType). On an in-process bus the callback
@@ -135,12 +152,14 @@ class Reader : private eprosima::fastdds::dds::DataReaderListener {
   /// header.source of the last sample ("" before the first).
   using DeadlineCallback = std::function<void(const std::string& source)>;
 
+  /// `trust`: whose samples it takes (over DDS; in process every writer is the rig's own code).
   Reader(Bus& bus, const Def& def, Callback on_sample, LivelinessCallback on_liveliness = {},
-         DeadlineCallback on_deadline = {})
+         DeadlineCallback on_deadline = {}, WriterTrust trust = {})
       : name_(def.name),
         on_sample_(std::move(on_sample)),
         on_liveliness_(std::move(on_liveliness)),
-        on_deadline_(std::move(on_deadline)) {
+        on_deadline_(std::move(on_deadline)),
+        trust_(std::move(trust)) {
     if (LocalHub* hub = bus.localHub()) {
       local_ = &hub->channel(def);
       local_id_ = local_->addReader(&on_sample_);
@@ -185,7 +204,7 @@ class Reader : private eprosima::fastdds::dds::DataReaderListener {
     Sample sample;
     eprosima::fastdds::dds::SampleInfo info;
     while (reader->take_next_sample(&sample, &info) == ReturnCode_t::RETCODE_OK) {
-      if (!info.valid_data) continue;
+      if (!info.valid_data || !trusted(info.publication_handle, sample.header())) continue;
       if (on_liveliness_ || on_deadline_) {
         std::lock_guard lock(sources_mutex_);
         last_source_ = text(sample.header().source());
@@ -224,10 +243,58 @@ class Reader : private eprosima::fastdds::dds::DataReaderListener {
     on_deadline_(source);
   }
 
+  /// Whether the writer's samples are taken (WriterTrust); tells on_foreign of each one that is not.
+  bool trusted(const eprosima::fastdds::dds::InstanceHandle_t& writer, const msg::SampleHeader& header) {
+    if (trust_.producers.empty() && !trust_.source_is_participant) return true;
+    eprosima::fastrtps::rtps::GUID_t guid;
+    bool first = false;
+    std::string participant;
+    {
+      std::lock_guard lock(trust_mutex_);
+      auto it = writer_trusted_.find(writer);
+      if (it == writer_trusted_.end()) {
+        eprosima::fastrtps::rtps::iHandle2GUID(guid, writer);
+        const auto name = bus_->participantName(guid.guidPrefix);
+        const bool producer = std::find(trust_.producers.begin(), trust_.producers.end(), name.value_or("")) !=
+                              trust_.producers.end();
+        const bool ok = trust_.source_is_participant || producer;
+        // A participant's name is known before its writers match (discovery's
+        // order), so a nameless one is gone already: decided again if it comes back.
+        if (name) it = writer_trusted_.emplace(writer, WriterSeen{ok, *name, false, producer}).first;
+        participant = name.value_or("");
+        if (name && !ok) first = !std::exchange(it->second.reported, true);
+      } else {
+        participant = it->second.participant;
+      }
+      if (it != writer_trusted_.end() && it->second.trusted) {
+        if (!trust_.source_is_participant || it->second.any_source || text(header.source()) == participant) {
+          return true;
+        }
+        first = !std::exchange(it->second.reported, true);
+      }
+    }
+    if (trust_.on_foreign) {
+      eprosima::fastrtps::rtps::iHandle2GUID(guid, writer);
+      std::ostringstream text;
+      text << guid;
+      trust_.on_foreign(text.str(), participant, first);
+    }
+    return false;
+  }
+
   std::string name_;
   Callback on_sample_;
   LivelinessCallback on_liveliness_;
   DeadlineCallback on_deadline_;
+  WriterTrust trust_;
+  struct WriterSeen {
+    bool trusted = false;      ///< a producer's (or, source_is_participant, any participant's)
+    std::string participant;   ///< its participant's name
+    bool reported = false;     ///< on_foreign was told of its first refused sample
+    bool any_source = false;   ///< source_is_participant: one of `producers`, which may name any source
+  };
+  std::mutex trust_mutex_;
+  std::map<eprosima::fastdds::dds::InstanceHandle_t, WriterSeen> writer_trusted_;  // decided at its first sample
   std::mutex sources_mutex_;
   std::string last_source_;
   std::map<eprosima::fastdds::dds::InstanceHandle_t, std::string> sources_;  // writer -> header.source

@@ -126,6 +126,7 @@ bool Node::waitForInputs(std::uint64_t k) {
       }
     }
     if (missing == nullptr) return true;
+    throwIfFatal();
     if (interrupted()) {
       throw NodeFailure(options_.name + ": interrupted at step " + std::to_string(k));
     }
@@ -193,6 +194,18 @@ void Node::publishHealth(msg::ComponentState state, std::uint64_t steps_done,
   for (const auto& input : inputs_) copies += input->copiesDropped();
   health.copies_dropped(copies);
   health.deadlines_missed(deadlines_missed_.load());
+  {
+    std::lock_guard lock(refused_mutex_);
+    health.samples_rejected(refused_total_);
+    std::size_t slot = 0;
+    for (const auto& [topic, count] : refused_) {
+      if (slot == health.rejected_by_topic().size()) break;
+      setText(health.rejected_by_topic()[slot].topic(), topic);
+      health.rejected_by_topic()[slot++].count(count);
+    }
+    health.intruders(intruders_.size());
+  }
+  health.commands_clamped(commands_clamped_.load());
   addToHealth(health);
   health_.write(health);
 }
@@ -201,6 +214,49 @@ void Node::inputLate(const std::string& topic, const std::string& producer) {
   const std::uint64_t missed = ++deadlines_missed_;
   spdlog::warn("{}: {} from {} is late: nothing within its deadline; {} deadline(s) missed so far", name(), topic,
                producer.empty() ? "its producer" : producer, missed);
+}
+
+void Node::refuseSample(const std::string& topic, const msg::SampleHeader& header, Breach why, bool as_missing) {
+  std::uint64_t n = 0;
+  {
+    std::lock_guard lock(refused_mutex_);
+    ++refused_total_;
+    n = ++refused_[topic];
+  }
+  std::uint64_t decade = 1;  // a flood of bad samples does not flood the log
+  while (decade <= n / 10) decade *= 10;
+  if (n == decade) {
+    spdlog::warn("{}: refused a sample on {} from '{}' stamped step {}: {} {}; {} ({} refused on it so far)", name(),
+                 topic, text(header.source()), header.step(), why.field, why.reason,
+                 as_missing ? "taken as missing" : "dropped", n);
+  }
+}
+
+void Node::foreignWriter(const std::string& topic, const std::string& expected, bool fatal, const std::string& guid,
+                         const std::string& participant, bool first) {
+  {
+    std::lock_guard lock(refused_mutex_);
+    ++refused_total_;
+    ++refused_[topic];
+    if (first) intruders_.push_back(guid);
+  }
+  if (!first) return;
+  // The participant first: a health message keeps 95 characters of the reason.
+  const std::string who = "participant '" + participant + "' (writer " + guid + ")";
+  spdlog::error("{}: intruder on {}: {} is not its producer '{}'; its samples are ignored", name(), topic, who,
+                expected);
+  onIntruder(topic, guid, participant);
+  if (!fatal) return;
+  {
+    std::lock_guard lock(mutex_);
+    if (!fatal_set_) {
+      fatal_set_ = true;
+      fatal_ = name() + ": intruder on " + topic + ": " + who + ", not its producer '" + expected +
+               "': a lockstep run cannot go on, as exclusive ownership may give the readers its samples "
+               "in place of the producer's";
+    }
+  }
+  changed_.notify_all();
 }
 
 void Node::publishLastHealth(msg::ComponentState state, std::uint64_t steps_done,

@@ -20,6 +20,7 @@
 #include "bus/BusFaults.hpp"
 #include "bus/CommandAcks.hpp"
 #include "bus/Endpoints.hpp"
+#include "bus/SampleChecks.hpp"
 #include "bus/Stamp.hpp"
 #include "bus/StepSamples.hpp"
 #include "bus/Topics.hpp"
@@ -57,6 +58,14 @@ struct NodeOptions {
   /// Paced multi-process runs: where a component keeps its state after each step and
   /// the step it is about to publish (bus/Checkpoint.hpp); empty: nowhere.
   std::string checkpoint_file;
+  /// Components the scenario declares as hardware bridges (role: bridge): each
+  /// may publish the topics of the emulator it stands in for (Topics.hpp, producersOf).
+  std::vector<std::string> bridges;
+  /// Components that run elsewhere (role: external): no launcher watches their processes.
+  std::vector<std::string> externals;
+  /// Participants taken as the producer of every topic besides the rig's own
+  /// (FLATSAT_TRUST=flatsat-replay: a component fed by `flatsat replay`).
+  std::vector<std::string> trusted;
   /// A process started again mid-run (`flatsat run --restart`): it takes its state back
   /// from checkpoint_file before its first step, and steps no grant its previous
   /// process claimed.
@@ -179,6 +188,14 @@ class Input final : public InputBase {
   /// that this input holds already or has consumed: dropped, so observers
   /// (the recorder) see each sample once.
   bool resent(const Sample& sample) const;
+  /// Over DDS, what arrives is checked first (architecture, "Trust on the
+  /// bus"): stamped far past the newest grant, it is dropped; breaking its
+  /// topic's contract, it is taken in its missing form (bus/SampleChecks.hpp).
+  /// Either is counted (Node::refuseSample). In process every writer is the
+  /// rig's own code, and a composed step stays as cheap as it was.
+  void take(const Sample& sample);
+  /// Holds (or passes on) a sample that was taken.
+  void accept(const Sample& sample);
   mutable MutexIfThreaded mutex_;
   StepSamples<Sample> samples_;
   std::uint64_t consumed_before_ = 0;  ///< steps below this were dropped (dropBefore) or passed on
@@ -207,6 +224,38 @@ class Node {
     return names;
   }
   std::uint32_t dividerOf(const std::string& component) const;
+
+  /// [steps] How far past the newest grant this node has seen a sample may be
+  /// stamped. Lockstep producers run at most a step ahead of a consumer's
+  /// grants and sinks trail by TimeMaster::kSinkTrailSteps; farther is a
+  /// clock gone wrong or a flood, which would otherwise be held for ever.
+  static constexpr std::uint64_t kStampWindowSteps = 64;
+  /// Whether a sample stamped `step` is near enough the newest grant to be taken.
+  bool stampedNearNow(std::uint64_t step) const {
+    return step <= newest_grant_.load(std::memory_order_relaxed) + kStampWindowSteps;
+  }
+  /// Counts (health: samples_rejected, by topic) and logs, rate-limited, a
+  /// sample this node refused; on a Fast DDS thread.
+  /// `as_missing`: the sample was taken in its missing form (else dropped).
+  void refuseSample(const std::string& topic, const msg::SampleHeader& header, Breach why, bool as_missing);
+  /// Whose samples of `def` this node takes (Reader's WriterTrust): the
+  /// topic's producer and a bridge the scenario declares for it; every
+  /// writer for a topic any component publishes (StepDone, health, commands).
+  template <class Def>
+  WriterTrust trustFor(const Def& def);
+  /// For a topic every component writes (StepDone, health): samples whose
+  /// header.source is their writer's own participant; others are an intruder's.
+  template <class Def>
+  WriterTrust trustBySource(const Def& def) {
+    WriterTrust trust;
+    trust.source_is_participant = true;
+    trust.producers = options_.trusted;
+    trust.on_foreign = [this, topic = std::string(def.name)](const std::string& guid, const std::string& participant,
+                                                             bool first) {
+      foreignWriter(topic, "the component its samples name", false, guid, participant, first);
+    };
+    return trust;
+  }
 
  protected:
   template <class Def>
@@ -307,6 +356,26 @@ class Node {
 
   bool paced() const { return options_.pacing == Pacing::kPaced; }
 
+  /// A grant for step k arrived: samples stamped up to k + kStampWindowSteps are taken from now on.
+  void granted(std::uint64_t k) {
+    std::uint64_t seen = newest_grant_.load(std::memory_order_relaxed);
+    while (k > seen && !newest_grant_.compare_exchange_weak(seen, k, std::memory_order_relaxed)) {
+    }
+  }
+  /// A writer that is not the topic's producer (an intruder) wrote to a topic this node
+  /// reads: the recorder keeps it in the recording. On a Fast DDS thread.
+  virtual void onIntruder(const std::string& /*topic*/, const std::string& /*writer*/,
+                          const std::string& /*participant*/) {}
+  /// The newest step granted that this node has seen.
+  std::uint64_t newestGrant() const { return newest_grant_.load(std::memory_order_relaxed); }
+  /// Throws NodeFailure when something seen on the bus ended this node's run
+  /// (an intruder on a stepped topic in lockstep). The caller holds mutex_.
+  void throwIfFatal() const {
+    if (fatal_set_.load(std::memory_order_relaxed)) throw NodeFailure(fatal_);
+  }
+  /// Actuator commands held to their limits (the dynamics server: health commands_clamped).
+  std::atomic<std::uint64_t> commands_clamped_{0};
+
   Bus& bus_;
   NodeOptions options_;
   /// Paced: steps that went on with an input not fresh (a deadline miss).
@@ -358,6 +427,16 @@ class Node {
     inputs_.push_back(std::move(input));
     return ref;
   }
+  /// A sample of a writer that trustFor() does not take arrived; `first`: its first.
+  void foreignWriter(const std::string& topic, const std::string& expected, bool fatal, const std::string& guid,
+                     const std::string& participant, bool first);
+  std::atomic<std::uint64_t> newest_grant_{0};
+  std::string fatal_;  // guarded by mutex_; see throwIfFatal()
+  std::atomic<bool> fatal_set_{false};  // fatal_ is set
+  mutable std::mutex refused_mutex_;
+  std::map<std::string, std::uint64_t> refused_;  // by topic, under refused_mutex_
+  std::uint64_t refused_total_ = 0;               // under refused_mutex_
+  std::vector<std::string> intruders_;            // writers' GUIDs, under refused_mutex_
   std::vector<std::unique_ptr<InputBase>> inputs_;
   std::vector<std::unique_ptr<OutputBase>> outputs_;
   WriterOf<topics::kHealth> health_;
@@ -377,6 +456,26 @@ class Node {
   std::atomic<CommandAcks*> bus_fault_acks_{nullptr};
   ReaderOf<topics::kFaultCmd> bus_fault_commands_;  // last: its callback uses the members above
 };
+
+template <class Def>
+WriterTrust Node::trustFor(const Def& def) {
+  if (def.producer.empty()) return {};
+  WriterTrust trust;
+  trust.producers.emplace_back(def.producer);
+  trust.producers.insert(trust.producers.end(), options_.trusted.begin(), options_.trusted.end());
+  const std::string bridge = std::string(def.producer) + "_bridge";
+  if (std::find(options_.bridges.begin(), options_.bridges.end(), bridge) != options_.bridges.end()) {
+    trust.producers.push_back(bridge);
+  }
+  // Lockstep cannot go on past an intruder on a stepped topic: exclusive ownership may
+  // hand its samples to the readers in place of the producer's, which are then lost.
+  const bool fatal = def.qos == QosKind::kStepped && !paced();
+  trust.on_foreign = [this, topic = std::string(def.name), expected = std::string(def.producer), fatal](
+                         const std::string& guid, const std::string& participant, bool first) {
+    foreignWriter(topic, expected, fatal, guid, participant, first);
+  };
+  return trust;
+}
 
 /// The input type of a registry topic: InputOf<topics::kTruth>.
 template <const auto& Topic>
@@ -412,23 +511,11 @@ Input<Def>::Input(Node& node, const Def& def, std::uint32_t producer_divider, Ob
       faults_(faults),
       mutex_(!node.inProcess()),
       passes_through_(faults == nullptr && node.inProcess()),
-      reader_(node.bus_, def, [this](const Sample& sample) {
-        if (faults_ != nullptr && faults_->dropped(sample.header().step())) return;  // never reached this reader
-        if (resent(sample)) return;
-        if (observer_) observer_(sample);
-        if (passes_through_) {  // in process a topic's one writer delivers in step order
-          consumed_before_ = sample.header().step() + 1;
-          return;
-        }
-        {
-          std::lock_guard lock(mutex_);
-          samples_.insert_or_assign(sample.header().step(), sample);
-        }
-        node_.notify();
-      },
+      reader_(node.bus_, def, [this](const Sample& sample) { take(sample); },
       {},
       node.paced() ? [this](const std::string& source) { node_.inputLate(topicName(), source); }
-                   : typename Reader<Def>::DeadlineCallback{}) {
+                   : typename Reader<Def>::DeadlineCallback{},
+      node.trustFor(def)) {
   // The deadline is the lease, or one and a half of the producer's own period when
   // that is longer (a 1 Hz command against a 1 s lease is not late every period).
   const auto producer_period = std::chrono::duration_cast<std::chrono::nanoseconds>(
@@ -436,6 +523,43 @@ Input<Def>::Input(Node& node, const Def& def, std::uint32_t producer_divider, Ob
   if (node.paced() && producer_period > node.bus_.tuning().lease) reader_.requestDeadline(producer_period);
   const auto lease_steps = static_cast<std::uint64_t>(node.bus_.tuning().lease / node.options_.period);
   hold_steps_ = std::max<std::uint64_t>(producer_divider, lease_steps);
+}
+
+template <class Def>
+void Input<Def>::take(const Sample& sample) {
+  if (node_.inProcess()) {
+    accept(sample);
+    return;
+  }
+  const msg::SampleHeader& header = sample.header();
+  if (!node_.stampedNearNow(header.step())) {
+    node_.refuseSample(topicName(), header, {"header.step", "stamped too far past the rig's newest step"}, false);
+    return;
+  }
+  if (const Breach breach = breachOf(sample)) {
+    Sample missing = sample;
+    const bool as_missing = takeAsMissing(missing);
+    node_.refuseSample(topicName(), header, breach, as_missing);
+    if (as_missing) accept(missing);
+    return;
+  }
+  accept(sample);
+}
+
+template <class Def>
+void Input<Def>::accept(const Sample& sample) {
+  if (faults_ != nullptr && faults_->dropped(sample.header().step())) return;  // never reached this reader
+  if (resent(sample)) return;
+  if (observer_) observer_(sample);
+  if (passes_through_) {  // in process a topic's one writer delivers in step order
+    consumed_before_ = sample.header().step() + 1;
+    return;
+  }
+  {
+    std::lock_guard lock(mutex_);
+    samples_.insert_or_assign(sample.header().step(), sample);
+  }
+  node_.notify();
 }
 
 template <class Def>

@@ -2,7 +2,9 @@
 #include "bus/NodeMain.hpp"
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
+#include <sstream>
 
 #include <CLI/CLI.hpp>
 #include <spdlog/sinks/stdout_color_sinks.h>
@@ -47,6 +49,16 @@ NodeOptions nodeOptions(const Scenario& scenario, const std::string& name) {
   options.period = std::chrono::nanoseconds(std::llround(scenario.step_s * 1e9));
   options.seed = scenario.seed;
   options.bus_faults = scenario.bus_faults;
+  for (const auto& component : scenario.components) {
+    if (component.role == "bridge") options.bridges.push_back(component.name);
+    if (!component.launched) options.externals.push_back(component.name);
+  }
+  if (const char* trusted = std::getenv("FLATSAT_TRUST")) {
+    std::stringstream names(trusted);
+    for (std::string participant; std::getline(names, participant, ',');) {
+      if (!participant.empty()) options.trusted.push_back(participant);
+    }
+  }
   return options;
 }
 

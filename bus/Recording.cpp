@@ -339,7 +339,9 @@ void Recording::eraseAfter(std::uint64_t step) {
   }
 }
 
-std::string Recording::digest(const std::vector<std::string>& excluded) const {
+std::string Recording::digest(
+    const std::vector<std::string>& excluded,
+    const std::function<bool(const std::string& topic, const std::vector<std::uint8_t>& payload)>& skip) const {
   const auto lock = settle();
   std::unique_ptr<EVP_MD_CTX, decltype(&EVP_MD_CTX_free)> ctx(EVP_MD_CTX_new(), EVP_MD_CTX_free);
   EVP_DigestInit_ex(ctx.get(), EVP_sha256(), nullptr);
@@ -348,6 +350,10 @@ std::string Recording::digest(const std::vector<std::string>& excluded) const {
   while (sqlite3_step(s.stmt) == SQLITE_ROW) {
     const std::string topic = text(s.stmt, 0);
     if (std::find(excluded.begin(), excluded.end(), topic) != excluded.end()) continue;
+    if (skip) {
+      const auto* bytes = static_cast<const std::uint8_t*>(sqlite3_column_blob(s.stmt, 3));
+      if (skip(topic, std::vector<std::uint8_t>(bytes, bytes + sqlite3_column_bytes(s.stmt, 3)))) continue;
+    }
     const std::string source = text(s.stmt, 1);
     const auto step = static_cast<std::uint64_t>(sqlite3_column_int64(s.stmt, 2));
     EVP_DigestUpdate(ctx.get(), topic.c_str(), topic.size() + 1);

@@ -77,7 +77,10 @@ class Recording {
   /// SHA-256 (hex) over every sample of every topic except `excluded`, in
   /// (topic, source, step) order: independent of arrival order and of
   /// wall-clock topics.
-  std::string digest(const std::vector<std::string>& excluded) const;
+  /// `skip(topic, payload)`: further rows to leave out (none when empty).
+  std::string digest(const std::vector<std::string>& excluded,
+                     const std::function<bool(const std::string& topic, const std::vector<std::uint8_t>& payload)>&
+                         skip = {}) const;
 
  private:
   /// Rows queued for the writer, their text and bytes in one buffer: no

@@ -29,7 +29,8 @@ TimeMaster::TimeMaster(Bus& bus, NodeOptions options, Timing timing)
                        }
                      }
                      notify();
-                   }),
+                   },
+                   {}, {}, trustBySource(topics::kStepDone)),
       health_reader_(bus, topics::kHealth,
                      [this](const msg::Health& health) {
                        {
@@ -52,7 +53,8 @@ TimeMaster::TimeMaster(Bus& bus, NodeOptions options, Timing timing)
                        }
                        changed_.notify_all();
                      },
-                     [this](const std::string& source, bool alive) { livelinessChanged(source, alive); }),
+                     [this](const std::string& source, bool alive) { livelinessChanged(source, alive); },
+                     {}, trustBySource(topics::kHealth)),
       grant_(bus, topics::kStepGrant),
       bus_fault_events_(bus, topics::kFaultEvent),
       bus_fault_acks_(bus) {
@@ -86,17 +88,34 @@ void TimeMaster::livelinessChanged(const std::string& component, bool alive) {
     const auto state = states_.find(component);
     const bool ended = state != states_.end() && (state->second == msg::ComponentState::STOPPED ||
                                                   state->second == msg::ComponentState::FAILED);
-    if (component == name() || (!alive && ended) || (alive == (lost_.count(component) == 0))) return;
-    if (alive) {
-      lost_.erase(component);
-      spdlog::info("{}: {} is alive again", name(), component);
+    if (component == name() || (!alive && ended)) return;
+    if (std::find(options_.externals.begin(), options_.externals.end(), component) == options_.externals.end()) {
+      // The launcher started its process and watches it: a death it sees at
+      // once. A lease that lapsed with the process alive is a starved process
+      // (a loaded machine, a debugger): late, not gone; lockstep waits for it
+      // up to the step timeout, as for any slow step.
+      if (alive ? late_.erase(component) == 0 : !late_.insert(component).second) return;
+      if (alive) {
+        spdlog::info("{}: {} is on time again (its liveliness is back)", name(), component);
+      } else {
+        spdlog::warn("{}: {} is late: no sign of life for {} ms; its process is the launcher's to watch", name(),
+                     component, kHealthLease.count());
+      }
+      component_events_.push_back({component, "late", !alive});
+    } else if (alive == (lost_.count(component) == 0)) {
+      return;
     } else {
-      lost_.insert(component);
-      late_.erase(component);  // gone, not late
-      spdlog::warn("{}: {} lost its liveliness ({} ms without a sign of life)", name(), component,
-                   kHealthLease.count());
+      if (alive) {
+        lost_.erase(component);
+        spdlog::info("{}: {} is alive again", name(), component);
+      } else {
+        lost_.insert(component);
+        late_.erase(component);  // gone, not late
+        spdlog::warn("{}: {} lost its liveliness ({} ms without a sign of life)", name(), component,
+                     kHealthLease.count());
+      }
+      component_events_.push_back({component, "lost", !alive});
     }
-    component_events_.push_back({component, "lost", !alive});
   }
   changed_.notify_all();
 }
@@ -159,6 +178,7 @@ void TimeMaster::waitForDone(std::uint64_t k) {
   for (;;) {
     const std::string missing = notDone(k);
     if (missing.empty()) return;
+    throwIfFatal();
     if (auto failed = failedComponents(); !failed.empty()) {
       throw NodeFailure(name() + ": step " + std::to_string(k) + ": component failed:" + failed);
     }
@@ -293,6 +313,7 @@ void TimeMaster::beginStep(std::uint64_t k) {
     tick_lateness_.add(std::chrono::steady_clock::now() - (start_ + std::chrono::nanoseconds(timing_.period_ns) * k));
   }
   const StepContext ctx = context(k);
+  granted(k);
   publishFaultEvents(ctx);
   publishStep(ctx);
   msg::StepGrant grant;

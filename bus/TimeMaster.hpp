@@ -74,8 +74,11 @@ class TimeMaster : public Node {
   /// one (kind "lost" or "late", from the component) for each liveliness lost
   /// or regained and each component found late or on time again.
   void publishFaultEvents(const StepContext& ctx);
-  /// A component's health writer lost or regained its liveliness (kHealthLease):
-  /// lost, a lockstep run stops naming it; paced runs go on and record it.
+  /// A component's health writer lost or regained its liveliness (kHealthLease).
+  /// An external component (no launcher watches its process) is lost: a
+  /// lockstep run stops naming it, a paced one goes on and records it. Any
+  /// other is late (its process may be starved, not dead: the launcher sees a
+  /// death itself), and lockstep waits up to the step timeout.
   void livelinessChanged(const std::string& component, bool alive);
   /// Paced: marks late each running component with no health for kHealthLate.
   /// Call under mutex_.

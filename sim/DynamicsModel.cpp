@@ -81,6 +81,7 @@ void DynamicsModel::step(const ActuatorCommands& cmd, SimTime t_next) {
   const double t1_s = toSeconds(t_next);
   const double dt_s = t1_s - t0_s;
   Applied applied;
+  commands_clamped_ = commandsBeyondLimits(cmd);
   applied.wheel_torque_Nm = body_.limitMotorTorque(state_, cmd.wheel_torque_Nm);
   applied.dipole_B_Am2 = clipDipole(cmd.dipole_B_Am2);
   const double quiet = cmd.dipole_quiet_fraction;
@@ -210,6 +211,14 @@ DynamicsModel::Torques DynamicsModel::torquesAt(const Environment& env, const Ei
     torques.solar_pressure += solarPressureForceTorque(flap_panels_, torques.sun_B_unit, env.solar_flux_W_m2);
   }
   return torques;
+}
+
+std::uint32_t DynamicsModel::commandsBeyondLimits(const ActuatorCommands& cmd) const {
+  std::uint32_t beyond = 0;
+  for (int i = 0; i < 3; ++i) beyond += !(std::abs(cmd.dipole_B_Am2(i)) <= params_.torquer_max_dipole_Am2(i));
+  const RigidBodyParams& body = params_.body;
+  for (int i = 0; i < body.wheel_count; ++i) beyond += !(std::abs(cmd.wheel_torque_Nm(i)) <= body.wheel_max_torque_Nm(i));
+  return beyond;
 }
 
 Eigen::Vector3d DynamicsModel::clipDipole(const Eigen::Vector3d& dipole_B_Am2) const {

@@ -62,6 +62,9 @@ class DynamicsModel {
   /// pulses cut to the step — integrates to t_next and recomputes the truth.
   /// A t_next not after t_now changes nothing. Never throws, never allocates.
   void step(const ActuatorCommands& cmd, SimTime t_next);
+  /// How many coil and wheel commands of the last step() were beyond their
+  /// actuator's limit and held to it (a value that is not finite counts too).
+  std::uint32_t commandsClamped() const { return commands_clamped_; }
 
  private:
   struct Environment {
@@ -109,6 +112,8 @@ class DynamicsModel {
   /// (not the torquers, not the flaps, whose angles change from step to step).
   Torques attitudeTorquesAt(const Environment& env, const Eigen::Quaterniond& q_NB) const;
   Eigen::Vector3d clipDipole(const Eigen::Vector3d& dipole_B_Am2) const;
+  std::uint32_t commandsBeyondLimits(const ActuatorCommands& cmd) const;
+  std::uint32_t commands_clamped_ = 0;  // by the last step()
   void setFlaps(const Eigen::Vector4d& flap_angle_rad);
   void updateTruth(const Applied& applied, double substep_s);
 

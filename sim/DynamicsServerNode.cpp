@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "sim/DynamicsServerNode.hpp"
 
+#include <spdlog/spdlog.h>
+
 #include "bus/Convert.hpp"
 
 namespace flatsat::sim {
@@ -122,6 +124,10 @@ void DynamicsServerNode::advance(const bus::StepContext& ctx) {
   fault_port_.publishEvents(active, faults_.count(),
                             [this](int i) -> const ActuatorFault& { return faults_.fault(i); }, ctx);
   model_.step(cmd, ctx.sim_time_ns + ctx.period_ns);
+  if (const std::uint32_t clamped = model_.commandsClamped(); clamped > 0) {
+    const std::uint64_t n = commands_clamped_ += clamped;
+    if (n == clamped) spdlog::warn("{}: step {}: an actuator command beyond its limit was held to it", name(), ctx.step);
+  }
 }
 
 }  // namespace flatsat::sim

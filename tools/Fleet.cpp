@@ -138,6 +138,18 @@ nlohmann::ordered_json fleetSummary(const bus::Scenario& scenario, const std::st
   s["steps_per_second"] = steps_per_second;
   s["processes"] = result.processes;
   s["spacecraft_count"] = count;
+  // The fleet completed when every spacecraft did; the first that did not says why.
+  s["completed"] = std::all_of(each.begin(), each.end(), [](const auto& one) { return one.value("completed", false); });
+  s["end_reason"] = "completed";
+  for (std::uint32_t i = 0; i < count; ++i) {
+    if (!each[i].value("completed", false)) {
+      s["end_reason"] = "spacecraft " + std::to_string(i) + ": " + each[i].value("end_reason", std::string("?"));
+      break;
+    }
+  }
+  std::uint64_t intruders = 0;
+  for (const auto& one : each) intruders += one.value("intruders", std::uint64_t{0});
+  s["intruders"] = intruders;
   s["spacecraft_steps_per_second"] = steps_per_second * count;
   for (auto& summary : each) {
     for (const auto& key : kRunKeys) summary.erase(key);

@@ -35,7 +35,8 @@ class Progress {
   Progress(bus::Bus& bus, bool show, bool keep_arrivals = false, Follow follow = Follow::kGrants)
       : show_(show), terminal_(::isatty(STDERR_FILENO) == 1), keep_arrivals_(keep_arrivals),
         grants_(std::make_unique<bus::ReaderOf<bus::topics::kStepGrant>>(
-            bus, bus::topics::kStepGrant, [this](const msg::StepGrant& g) { granted(g); })) {
+            bus, bus::topics::kStepGrant, [this](const msg::StepGrant& g) { granted(g); }, nullptr, nullptr,
+            bus::WriterTrust{{std::string(bus::topics::kStepGrant.producer)}, {}})) {
     if (follow == Follow::kMasterHealth) {
       master_health_ = std::make_unique<bus::ReaderOf<bus::topics::kHealth>>(
           bus, bus::topics::kHealth, [this](const msg::Health& h) { masterReported(h); });

@@ -22,6 +22,7 @@
 #include "tools/SummaryS0.hpp"
 #include "tools/SummaryS2.hpp"
 #include "tools/SummaryS3.hpp"
+#include "tools/SummaryTrust.hpp"
 
 namespace flatsat::tools {
 
@@ -101,6 +102,7 @@ nlohmann::ordered_json summarize(const bus::Scenario& scenario, const std::strin
 
   nlohmann::ordered_json s;
   s["scenario"] = scenario.name;
+  addCompletion(s, recording);
   s["sim_seconds"] = sim_seconds;
   s["wall_seconds"] = launch.step_seconds;
   s["launch_seconds"] = launch.launch_seconds;
@@ -209,13 +211,14 @@ nlohmann::ordered_json summarize(const bus::Scenario& scenario, const std::strin
   std::uint64_t refused_total = 0;  // mode, fault and parameter commands refused with a reason
   for (const auto& [component, count] : refused) refused_total += count;
   s["commands_refused"] = refused_total;
+  addTrustMetrics(s, recording);
   addS0Metrics(s, scenario, recording);
   summarizeMagnetic(scenario, recording, s);
   summarizeS2(scenario, recording, s);
   summarizeS3(scenario, recording, s);
   summarizeEstimator(scenario, recording, s);
   s["recording"] = recording_path;
-  s["recording_sha256"] = recording.digest({std::string(bus::topics::kHealth.name)});
+  s["recording_sha256"] = recording.digest({std::string(bus::topics::kHealth.name)}, wallClockVerdict);
   summarizeThrusterSequencer(scenario, recording, s);
   return s;
 }

@@ -186,6 +186,24 @@ bool prepareResumedRun(const RunOptions& o, const bus::Scenario& original, bus::
   return true;
 }
 
+/// The summary of a run that failed: what its recording shows, where it
+/// can still be read, with `completed: false` and the launcher's reason.
+void writeFailedSummary(const bus::Scenario& scenario, const std::string& run_dir,
+                        const tools::LaunchResult& result) {
+  nlohmann::ordered_json summary;
+  try {
+    summary = scenario.spacecraft_count > 1
+                  ? tools::fleetSummary(scenario, run_dir, result)
+                  : tools::summarize(scenario, (fs::path(run_dir) / "recording.sqlite").string(), result);
+  } catch (const std::exception& e) {
+    summary["scenario"] = scenario.name;
+    summary["summary_error"] = e.what();
+  }
+  summary["completed"] = false;
+  summary["end_reason"] = result.failure;
+  std::ofstream(fs::path(run_dir) / "summary.json") << summary.dump(2) << "\n";
+}
+
 int run(const RunOptions& o, nlohmann::ordered_json* summary_out = nullptr) {
   bus::Scenario original;
   if (!loadChecked(o.scenario, o.out, original)) return kExitBadInput;
@@ -278,6 +296,7 @@ int run(const RunOptions& o, nlohmann::ordered_json* summary_out = nullptr) {
   if (!o.composed) tools::cleanStaleSharedMemory(tools::kShmGrace);
   if (!result.ok) {
     std::cerr << "error: " << result.failure << "\n";
+    writeFailedSummary(scenario, run_dir, result);
     return kExitFailed;
   }
   if (!o.resume.empty()) {
@@ -303,6 +322,19 @@ int run(const RunOptions& o, nlohmann::ordered_json* summary_out = nullptr) {
     return kExitFailed;
   }
   std::ofstream(fs::path(run_dir) / "summary.json") << summary.dump(2) << "\n";
+  // Every process exited 0, yet the recording may end early (a stop grant
+  // forged by another writer ends the components that took it) or the bus
+  // may have had an intruder: neither is a run to trust.
+  const bool completed = summary.value("completed", false);
+  const auto intruders = summary.value("intruders", std::uint64_t{0});
+  if (!completed || intruders > 0) {
+    std::cerr << "error: " << (completed ? "" : "the run did not complete: " + summary.value("end_reason", std::string()))
+              << (completed || intruders == 0 ? "" : "; ")
+              << (intruders > 0 ? std::to_string(intruders) + " intruder(s) wrote on the rig's topics (summary.json: "
+                                      "intruder_writers)"
+                                : "")
+              << "\n";
+  }
   if (o.json) {
     std::cout << summary.dump(2) << "\n";
   } else if (!o.quiet) {
@@ -321,7 +353,7 @@ int run(const RunOptions& o, nlohmann::ordered_json* summary_out = nullptr) {
     }
   }
   if (summary_out != nullptr) *summary_out = summary;
-  return 0;
+  return completed && intruders == 0 ? 0 : kExitFailed;
 }
 
 std::string defaultScenario() {

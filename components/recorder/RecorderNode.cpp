@@ -126,7 +126,42 @@ void RecorderNode::recordDeliveries(const bus::StepContext& ctx) {
   }
 }
 
+RecorderNode::~RecorderNode() {
+  try {
+    storeIntruders();  // a lockstep run an intruder ended never reaches another step()
+  } catch (const std::exception& e) {
+    spdlog::error("{}: the intruders' fault events were not kept: {}", name(), e.what());
+  }
+}
+
+void RecorderNode::storeIntruders() {
+  std::vector<msg::FaultEvent> events;
+  {
+    std::lock_guard lock(intruders_mutex_);
+    events.swap(intruder_events_);
+  }
+  for (const auto& event : events) {
+    store(std::string(bus::topics::kFaultEvent.name), event.header(),
+          bus::serialize<std::remove_cvref_t<decltype(bus::topics::kFaultEvent)>>(event));
+  }
+}
+
+void RecorderNode::onIntruder(const std::string& topic, const std::string& writer, const std::string& participant) {
+  msg::FaultEvent event;
+  const std::uint64_t step = newestGrant();
+  bus::stamp(event.header(), {step, static_cast<std::int64_t>(step) * options_.period.count(), options_.period.count()},
+             participant.empty() ? std::string("?") : participant);
+  bus::setText(event.kind(), "intruder");
+  bus::setText(event.topic(), topic);
+  bus::setText(event.writer(), writer);
+  event.channel(-1);
+  event.active(true);
+  std::lock_guard lock(intruders_mutex_);
+  intruder_events_.push_back(event);
+}
+
 void RecorderNode::step(const bus::StepContext& ctx) {
+  storeIntruders();
   if (recorded(ctx.step)) recordDeliveries(ctx);
   if ((ctx.step + 1) % params_.commit_every_steps != 0) return;
   std::lock_guard lock(recording_mutex_);
@@ -143,6 +178,7 @@ void RecorderNode::step(const bus::StepContext& ctx) {
 }
 
 void RecorderNode::beforeStopped() {
+  storeIntruders();
   std::lock_guard lock(recording_mutex_);
   if (resume_after_) {
     recording_.setMeta(bus::meta::kResumeMismatches, std::to_string(resume_mismatches_));

@@ -33,9 +33,17 @@ struct RecorderParams {
 class RecorderNode final : public bus::Component {
  public:
   RecorderNode(bus::Bus& bus, bus::NodeOptions options, const RecorderParams& params);
+  ~RecorderNode() override;
 
  private:
   void step(const bus::StepContext& ctx) override;
+  /// Keeps a fault event of kind "intruder" (the writer's GUID, its participant
+  /// as the source) at the rig's newest step: the recorder reads every topic.
+  /// Stored from the step thread (storeIntruders), at the next step or as the node goes.
+  void onIntruder(const std::string& topic, const std::string& writer, const std::string& participant) override;
+  void storeIntruders();
+  std::mutex intruders_mutex_;
+  std::vector<msg::FaultEvent> intruder_events_;  // under intruders_mutex_
   /// Commits the last steps: a launcher on another host summarises the
   /// recording as soon as this recorder reports STOPPED.
   void beforeStopped() override;

@@ -11,6 +11,7 @@
 #include "bus/Convert.hpp"
 #include "bus/TimeMaster.hpp"
 #include "components/magnetometer/MagnetometerNode.hpp"
+#include "tests/support/FedByScript.hpp"
 #include "tests/support/TestDomain.hpp"
 
 namespace {
@@ -41,6 +42,7 @@ class Script final : public bus::TimeMaster {
   void publishStep(const bus::StepContext& ctx) override {
     msg::TruthState truth;
     bus::stamp(truth.header(), ctx, "dynamics_server");
+    truth.q_inertial_body({1.0, 0.0, 0.0, 0.0});  // a truth's attitude is a unit quaternion (bus/SampleChecks)
     bus::put(truth.b_body_T(), fieldAt(ctx.step));
     truth_.write(truth);
     if (ctx.step == 5) {  // a bias on x over steps 10..14, commanded on the bus
@@ -82,7 +84,7 @@ TEST_CASE("magnetometer faults from the scenario and the bus act on the readings
   bus::Bus script_bus({domain, bus::NetworkProfile::kLoopback, "script"});
   bus::Bus node_bus({domain, bus::NetworkProfile::kLoopback, "magnetometer"});
   Script script(script_bus, {"dynamics_server", schedule});
-  magnetometer::MagnetometerNode node(node_bus, {"magnetometer", schedule}, params);
+  magnetometer::MagnetometerNode node(node_bus, test::fedByScript({"magnetometer", schedule}), params);
   std::thread node_thread([&] { node.run(); });
   script.run();
   node_thread.join();

@@ -15,6 +15,7 @@
 #include "bus/GuardedType.hpp"
 #include "bus/TimeMaster.hpp"
 #include "components/magnetometer/MagnetometerNode.hpp"
+#include "tests/support/FedByScript.hpp"
 #include "tests/support/RogueWriter.hpp"
 #include "tests/support/TestDomain.hpp"
 
@@ -37,6 +38,7 @@ class Script final : public bus::TimeMaster {
   void publishStep(const bus::StepContext& ctx) override {
     msg::TruthState truth;
     bus::stamp(truth.header(), ctx, "dynamics_server");
+    truth.q_inertial_body({1.0, 0.0, 0.0, 0.0});  // a truth's attitude is a unit quaternion (bus/SampleChecks)
     bus::put(truth.b_body_T(), fieldAt(ctx.step));
     truth_.write(truth);
   }
@@ -59,7 +61,7 @@ TEST_CASE("samples that do not decode are dropped and counted, the node runs on"
   bus::Bus node_bus({domain, bus::NetworkProfile::kLoopback, "magnetometer"});
   bus::Bus rogue_bus({domain, bus::NetworkProfile::kLoopback, "rogue"});
   Script script(script_bus, {"dynamics_server", schedule});
-  magnetometer::MagnetometerNode node(node_bus, {"magnetometer", schedule}, params);
+  magnetometer::MagnetometerNode node(node_bus, test::fedByScript({"magnetometer", schedule}), params);
   std::mutex health_mutex;
   msg::Health last_node_health;
   bus::ReaderOf<bus::topics::kHealth> health_watch(script_bus, bus::topics::kHealth,

@@ -88,6 +88,7 @@ TEST_CASE("a step granted again is written again, and an input passes each sampl
   REQUIRE(test::within(20, [&] { return ready.load(); }));
   msg::TruthState state;
   bus::stamp(state.header(), {0, 0, kPeriodNs}, "dynamics_server");
+  state.q_inertial_body({1.0, 0.0, 0.0, 0.0});  // a truth's attitude is a unit quaternion (bus/SampleChecks)
   bus::put(state.b_body_T(), Eigen::Vector3d(2e-5, -1e-5, 3e-5));
   truth.write(state);
 

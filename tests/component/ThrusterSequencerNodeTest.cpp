@@ -12,6 +12,7 @@
 #include "bus/Convert.hpp"
 #include "bus/TimeMaster.hpp"
 #include "components/thruster_sequencer/ThrusterSequencerNode.hpp"
+#include "tests/support/FedByScript.hpp"
 #include "tests/support/TestDomain.hpp"
 #include "tests/support/TestUnits.hpp"
 
@@ -66,7 +67,7 @@ TEST_CASE("thruster sequencer node reads only the Sun sensor and fires the lower
   bus::Bus script_bus({domain, bus::NetworkProfile::kLoopback, "script"});
   bus::Bus node_bus({domain, bus::NetworkProfile::kLoopback, "thruster_sequencer"});
   ScriptedPeers script(script_bus, {"dynamics_server", master_view});
-  thruster_sequencer::ThrusterSequencerNode node(node_bus, {"thruster_sequencer", node_view}, node_params);
+  thruster_sequencer::ThrusterSequencerNode node(node_bus, test::fedByScript({"thruster_sequencer", node_view}), node_params);
   CHECK(node.inputTopics() == std::vector<std::string>{std::string(bus::topics::kSunSensor.name)});
 
   std::thread node_thread([&] { node.run(); });

@@ -16,6 +16,7 @@
 #include "bus/Convert.hpp"
 #include "bus/TimeMaster.hpp"
 #include "components/unloading_controller/UnloadingControllerNode.hpp"
+#include "tests/support/FedByScript.hpp"
 #include "tests/support/TestDomain.hpp"
 
 namespace {
@@ -121,7 +122,7 @@ TEST_CASE("unloading controller node answers every step with the cross-product l
   bus::Bus script_bus({domain, bus::NetworkProfile::kLoopback, "script"});
   bus::Bus node_bus({domain, bus::NetworkProfile::kLoopback, "unloading_controller"});
   ScriptedPeers script(script_bus, {"dynamics_server", master_view});
-  unloading_controller::UnloadingControllerNode node(node_bus, {"unloading_controller", node_view},
+  unloading_controller::UnloadingControllerNode node(node_bus, test::fedByScript({"unloading_controller", node_view}),
                                                      {params});
   std::thread node_thread([&] { node.run(); });
   script.run();
@@ -159,7 +160,7 @@ TEST_CASE("a mode command on flatsat/unloading_mode_cmd switches the node to B-d
   bus::Bus script_bus({domain, bus::NetworkProfile::kLoopback, "script"});
   bus::Bus node_bus({domain, bus::NetworkProfile::kLoopback, "unloading_controller"});
   ScriptedPeers script(script_bus, {"dynamics_server", master_view}, kCommandStep);
-  unloading_controller::UnloadingControllerNode node(node_bus, {"unloading_controller", node_view}, {params});
+  unloading_controller::UnloadingControllerNode node(node_bus, test::fedByScript({"unloading_controller", node_view}), {params});
   std::thread node_thread([&] { node.run(); });
   script.run();
   node_thread.join();
@@ -198,7 +199,7 @@ TEST_CASE("the unloading controller takes gain and threshold changes in flight, 
   bus::Bus script_bus({domain, bus::NetworkProfile::kLoopback, "script"});
   bus::Bus node_bus({domain, bus::NetworkProfile::kLoopback, "unloading_controller"});
   ScriptedPeers script(script_bus, {"dynamics_server", master_view}, std::nullopt, changes);
-  unloading_controller::UnloadingControllerNode node(node_bus, {"unloading_controller", node_view}, {params});
+  unloading_controller::UnloadingControllerNode node(node_bus, test::fedByScript({"unloading_controller", node_view}), {params});
   std::thread node_thread([&] { node.run(); });
   script.run();
   node_thread.join();

@@ -42,7 +42,9 @@ TEST_CASE("a replayed recording of the estimator's inputs reproduces its recorde
   fs::create_directories(rerun);
   // A fresh estimator with the run's scenario; the replay is its time master
   // and the producer of every recorded topic it does not publish itself.
-  test::Background estimator(std::string(FLATSAT_BIN_DIR) + "/flatsat-estimator --scenario " + run +
+  // It takes the replay's samples as its producers' (FLATSAT_TRUST): a rig takes none of them.
+  test::Background estimator("env FLATSAT_TRUST=flatsat-replay " + std::string(FLATSAT_BIN_DIR) +
+                           "/flatsat-estimator --scenario " + run +
                            "/scenario.yaml --name estimator --out " + rerun,
                        rerun + "/estimator.log");
   const auto replay = test::runCommand(test::kFlatsat + " replay " + run +
