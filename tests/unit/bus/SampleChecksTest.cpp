@@ -52,7 +52,7 @@ TEST_CASE("a value that is not finite breaks the contract wherever it sits", "[u
   CHECK(bus::breachOf(truth));
 }
 
-TEST_CASE("values outside a topic's physical range break it; commands only when not finite",
+TEST_CASE("values outside a topic's physical range break it, commands only when not finite",
           "[unit][bus][trust]") {
   auto magnetometer = stamped<msg::MagnetometerReading>();
   magnetometer.b_body_T({3e-5, -2e-5, 4e-5});  // a field of low orbit
