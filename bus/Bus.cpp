@@ -18,7 +18,6 @@
 #include <fastrtps/utils/IPLocator.h>
 #include <spdlog/spdlog.h>
 
-#include "bus/FastDdsLog.hpp"
 #include "bus/Security.hpp"
 
 namespace flatsat::bus {
@@ -298,14 +297,12 @@ Bus::Bus(const BusOptions& options) : options_(options) {
     dds::DomainParticipantFactory::get_instance()->delete_participant(participant_);
     throw std::runtime_error(options.participant_name + ": could not create the publisher and subscribers");
   }
-  attachFastDdsLog(*this, {subscriber_, watch_subscriber_});  // Fast DDS's log and drops (bus/FastDdsLog.hpp)
 }
 
 Bus::Bus(const BusOptions& options, LocalHub& hub) : options_(options), hub_(&hub) {}
 
 Bus::~Bus() {
   if (participant_ == nullptr) return;  // in-process
-  detachFastDdsLog(*this);
   {
     std::lock_guard lock(readers_mutex_);
     closing_ = true;  // the readers still here go with delete_contained_entities
@@ -371,7 +368,7 @@ dds::DataReader* Bus::createReader(dds::Topic& topic, const dds::DataReaderQos& 
   const bool watches = !(qos.liveliness().lease_duration == eprosima::fastrtps::c_TimeInfinite);
   holdWatchers();
   dds::DataReader* reader =
-      (watches ? watch_subscriber_ : subscriber_)->create_datareader(&topic, qos, listener, fastDdsReaderMask());
+      (watches ? watch_subscriber_ : subscriber_)->create_datareader(&topic, qos, listener);
   if (reader != nullptr && watches) ++watchers_;
   releaseWatchers();
   if (reader == nullptr) {
