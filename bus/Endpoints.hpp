@@ -120,16 +120,18 @@ class Writer {
 
 /// Whose samples a reader takes: writers of participants named in
 /// `producers` (a rig's participants bear their component's name). Empty: any
-/// writer's. Every sample of another writer is dropped and reported to
-/// `on_foreign` (on a Fast DDS thread) with the writer's GUID, its
-/// participant's name ("" when unknown) and whether it is that writer's first.
+/// writer's. Another writer is reported to `on_foreign` (on a Fast DDS
+/// thread) as it matches and at each of its samples, which are dropped: with
+/// the writer's GUID, its participant's name ("" when unknown), whether it is
+/// the first report of that writer and whether a sample was dropped.
 struct WriterTrust {
   std::vector<std::string> producers;
   /// A topic every component writes (StepDone, health): a sample is taken
   /// only when its header.source names the writer's own participant (or the
   /// participant is one of `producers`, which may write for anyone).
   bool source_is_participant = false;
-  std::function<void(const std::string& writer_guid, const std::string& participant, bool first)> on_foreign;
+  std::function<void(const std::string& writer_guid, const std::string& participant, bool first, bool sample)>
+      on_foreign;
 };
 
 /// Typed reader for one registry topic; every valid sample is handed to a
@@ -243,43 +245,73 @@ class Reader : private eprosima::fastdds::dds::DataReaderListener {
     on_deadline_(source);
   }
 
+  /// A writer that is not a producer's is named as it matches, before it
+  /// writes: exclusive ownership drops the samples of a weaker one before
+  /// they could be taken, so on_data_available would never see it.
+  void on_subscription_matched(eprosima::fastdds::dds::DataReader*,
+                               const eprosima::fastdds::dds::SubscriptionMatchedStatus& status) override {
+    if (status.current_count_change <= 0 || trust_.producers.empty() || trust_.source_is_participant) return;
+    std::string participant;
+    {
+      std::lock_guard lock(trust_mutex_);
+      WriterSeen* seen = judged(status.last_publication_handle);
+      if (seen == nullptr || seen->trusted || std::exchange(seen->reported, true)) return;
+      participant = seen->participant;
+    }
+    foreign(status.last_publication_handle, participant, true, false);
+  }
+
   /// Whether the writer's samples are taken (WriterTrust); tells on_foreign of each one that is not.
   bool trusted(const eprosima::fastdds::dds::InstanceHandle_t& writer, const msg::SampleHeader& header) {
     if (trust_.producers.empty() && !trust_.source_is_participant) return true;
-    eprosima::fastrtps::rtps::GUID_t guid;
     bool first = false;
     std::string participant;
     {
       std::lock_guard lock(trust_mutex_);
-      auto it = writer_trusted_.find(writer);
-      if (it == writer_trusted_.end()) {
-        eprosima::fastrtps::rtps::iHandle2GUID(guid, writer);
-        const auto name = bus_->participantName(guid.guidPrefix);
-        const bool producer = std::find(trust_.producers.begin(), trust_.producers.end(), name.value_or("")) !=
-                              trust_.producers.end();
-        const bool ok = trust_.source_is_participant || producer;
-        // A participant's name is known before its writers match (discovery's
-        // order), so a nameless one is gone already: decided again if it comes back.
-        if (name) it = writer_trusted_.emplace(writer, WriterSeen{ok, *name, false, producer}).first;
-        participant = name.value_or("");
-        if (name && !ok) first = !std::exchange(it->second.reported, true);
-      } else {
-        participant = it->second.participant;
-      }
-      if (it != writer_trusted_.end() && it->second.trusted) {
-        if (!trust_.source_is_participant || it->second.any_source || text(header.source()) == participant) {
+      if (WriterSeen* seen = judged(writer)) {
+        participant = seen->participant;
+        if (seen->trusted &&
+            (!trust_.source_is_participant || seen->any_source || text(header.source()) == participant)) {
           return true;
         }
-        first = !std::exchange(it->second.reported, true);
+        first = !std::exchange(seen->reported, true);
       }
     }
-    if (trust_.on_foreign) {
-      eprosima::fastrtps::rtps::iHandle2GUID(guid, writer);
-      std::ostringstream text;
-      text << guid;
-      trust_.on_foreign(text.str(), participant, first);
-    }
+    foreign(writer, participant, first, true);
     return false;
+  }
+
+  struct WriterSeen {
+    bool trusted = false;      ///< a producer's (or, source_is_participant, any participant's)
+    std::string participant;   ///< its participant's name
+    bool reported = false;     ///< on_foreign was told of it
+    bool any_source = false;   ///< source_is_participant: one of `producers`, which may name any source
+  };
+
+  /// What is known of `writer`, judged at its first match or sample; nullptr
+  /// while its participant's name is unknown. A participant's name is known
+  /// before its writers match (discovery's order), so a nameless one is gone
+  /// already: judged again if it comes back. With trust_mutex_ held.
+  WriterSeen* judged(const eprosima::fastdds::dds::InstanceHandle_t& writer) {
+    if (const auto it = writer_trusted_.find(writer); it != writer_trusted_.end()) return &it->second;
+    eprosima::fastrtps::rtps::GUID_t guid;
+    eprosima::fastrtps::rtps::iHandle2GUID(guid, writer);
+    const auto name = bus_->participantName(guid.guidPrefix);
+    if (!name) return nullptr;
+    const bool producer =
+        std::find(trust_.producers.begin(), trust_.producers.end(), *name) != trust_.producers.end();
+    return &writer_trusted_.emplace(writer, WriterSeen{trust_.source_is_participant || producer, *name, false, producer})
+                .first->second;
+  }
+
+  void foreign(const eprosima::fastdds::dds::InstanceHandle_t& writer, const std::string& participant, bool first,
+               bool sample) {
+    if (!trust_.on_foreign) return;
+    eprosima::fastrtps::rtps::GUID_t guid;
+    eprosima::fastrtps::rtps::iHandle2GUID(guid, writer);
+    std::ostringstream text;
+    text << guid;
+    trust_.on_foreign(text.str(), participant, first, sample);
   }
 
   std::string name_;
@@ -287,14 +319,8 @@ class Reader : private eprosima::fastdds::dds::DataReaderListener {
   LivelinessCallback on_liveliness_;
   DeadlineCallback on_deadline_;
   WriterTrust trust_;
-  struct WriterSeen {
-    bool trusted = false;      ///< a producer's (or, source_is_participant, any participant's)
-    std::string participant;   ///< its participant's name
-    bool reported = false;     ///< on_foreign was told of its first refused sample
-    bool any_source = false;   ///< source_is_participant: one of `producers`, which may name any source
-  };
   std::mutex trust_mutex_;
-  std::map<eprosima::fastdds::dds::InstanceHandle_t, WriterSeen> writer_trusted_;  // decided at its first sample
+  std::map<eprosima::fastdds::dds::InstanceHandle_t, WriterSeen> writer_trusted_;  // judged()
   std::mutex sources_mutex_;
   std::string last_source_;
   std::map<eprosima::fastdds::dds::InstanceHandle_t, std::string> sources_;  // writer -> header.source

@@ -233,19 +233,20 @@ void Node::refuseSample(const std::string& topic, const msg::SampleHeader& heade
 }
 
 void Node::foreignWriter(const std::string& topic, const std::string& expected, bool fatal, const std::string& guid,
-                         const std::string& participant, bool first) {
+                         const std::string& participant, bool first, bool sample) {
   {
     std::lock_guard lock(refused_mutex_);
-    ++refused_total_;
-    ++refused_[topic];
-    if (first) intruders_.push_back(guid);
+    if (sample) {
+      ++refused_total_;
+      ++refused_[topic];
+    }
+    if (first) intruders_.push_back({topic, guid, participant, newestGrant()});
   }
   if (!first) return;
   // The participant first: a health message keeps 95 characters of the reason.
   const std::string who = "participant '" + participant + "' (writer " + guid + ")";
   spdlog::error("{}: intruder on {}: {} is not its producer '{}'; its samples are ignored", name(), topic, who,
                 expected);
-  onIntruder(topic, guid, participant);
   if (!fatal) return;
   {
     std::lock_guard lock(mutex_);
@@ -257,6 +258,12 @@ void Node::foreignWriter(const std::string& topic, const std::string& expected, 
     }
   }
   changed_.notify_all();
+}
+
+std::vector<Node::Intruder> Node::intrudersFrom(std::size_t from) const {
+  std::lock_guard lock(refused_mutex_);
+  if (from >= intruders_.size()) return {};
+  return {intruders_.begin() + static_cast<std::ptrdiff_t>(from), intruders_.end()};
 }
 
 void Node::publishLastHealth(msg::ComponentState state, std::uint64_t steps_done,

@@ -251,8 +251,8 @@ class Node {
     trust.source_is_participant = true;
     trust.producers = options_.trusted;
     trust.on_foreign = [this, topic = std::string(def.name)](const std::string& guid, const std::string& participant,
-                                                             bool first) {
-      foreignWriter(topic, "the component its samples name", false, guid, participant, first);
+                                                             bool first, bool sample) {
+      foreignWriter(topic, "the component its samples name", false, guid, participant, first, sample);
     };
     return trust;
   }
@@ -362,10 +362,16 @@ class Node {
     while (k > seen && !newest_grant_.compare_exchange_weak(seen, k, std::memory_order_relaxed)) {
     }
   }
-  /// A writer that is not the topic's producer (an intruder) wrote to a topic this node
-  /// reads: the recorder keeps it in the recording. On a Fast DDS thread.
-  virtual void onIntruder(const std::string& /*topic*/, const std::string& /*writer*/,
-                          const std::string& /*participant*/) {}
+  /// A writer that is not its topic's producer, as first seen: its GUID, its
+  /// participant's name and the newest step granted then.
+  struct Intruder {
+    std::string topic, writer, participant;
+    std::uint64_t step = 0;
+  };
+  /// The intruders seen so far, from the `from`-th on: the recorder keeps them
+  /// in the recording. Data rather than a callback, as the first may come
+  /// while a derived node is still being constructed.
+  std::vector<Intruder> intrudersFrom(std::size_t from) const;
   /// The newest step granted that this node has seen.
   std::uint64_t newestGrant() const { return newest_grant_.load(std::memory_order_relaxed); }
   /// Throws NodeFailure when something seen on the bus ended this node's run
@@ -427,16 +433,17 @@ class Node {
     inputs_.push_back(std::move(input));
     return ref;
   }
-  /// A sample of a writer that trustFor() does not take arrived; `first`: its first.
+  /// A writer that trustFor() does not take matched (`sample` false) or wrote
+  /// a sample, which was dropped; `first`: the first report of it.
   void foreignWriter(const std::string& topic, const std::string& expected, bool fatal, const std::string& guid,
-                     const std::string& participant, bool first);
+                     const std::string& participant, bool first, bool sample);
   std::atomic<std::uint64_t> newest_grant_{0};
   std::string fatal_;  // guarded by mutex_; see throwIfFatal()
   std::atomic<bool> fatal_set_{false};  // fatal_ is set
   mutable std::mutex refused_mutex_;
   std::map<std::string, std::uint64_t> refused_;  // by topic, under refused_mutex_
   std::uint64_t refused_total_ = 0;               // under refused_mutex_
-  std::vector<std::string> intruders_;            // writers' GUIDs, under refused_mutex_
+  std::vector<Intruder> intruders_;               // under refused_mutex_
   std::vector<std::unique_ptr<InputBase>> inputs_;
   std::vector<std::unique_ptr<OutputBase>> outputs_;
   WriterOf<topics::kHealth> health_;
@@ -471,8 +478,8 @@ WriterTrust Node::trustFor(const Def& def) {
   // hand its samples to the readers in place of the producer's, which are then lost.
   const bool fatal = def.qos == QosKind::kStepped && !paced();
   trust.on_foreign = [this, topic = std::string(def.name), expected = std::string(def.producer), fatal](
-                         const std::string& guid, const std::string& participant, bool first) {
-    foreignWriter(topic, expected, fatal, guid, participant, first);
+                         const std::string& guid, const std::string& participant, bool first, bool sample) {
+    foreignWriter(topic, expected, fatal, guid, participant, first, sample);
   };
   return trust;
 }

@@ -95,7 +95,16 @@ class Externals {
             bus, bus::topics::kHealth, [this](const msg::Health& health) { receive(health); },
             [this](const std::string& source, bool alive) {
               if (!alive) lost(source);
-            }) {}
+            },
+            {},
+            // A health naming another participant than its writer's is not
+            // that component's word (architecture, "Trust on the bus").
+            bus::WriterTrust{{}, true, [](const std::string& guid, const std::string& participant, bool first, bool) {
+              if (first) {
+                spdlog::error("launcher: health from participant '{}' (writer {}) names another component; ignored",
+                              participant, guid);
+              }
+            }}) {}
 
   /// Logs the joins and losses since the last call.
   void report() {

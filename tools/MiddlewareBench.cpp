@@ -249,6 +249,7 @@ class BareMaster final : public bus::TimeMaster {
   void publishStep(const bus::StepContext& ctx) override {
     msg::TruthState truth;
     bus::stamp(truth.header(), ctx, name());
+    truth.q_inertial_body({1.0, 0.0, 0.0, 0.0});  // a truth that is not a rotation is refused (bus/SampleChecks)
     truth_.write(truth);
   }
   void advance(const bus::StepContext& ctx) override {

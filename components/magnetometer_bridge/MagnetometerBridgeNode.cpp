@@ -25,7 +25,7 @@ MagnetometerBridgeNode::MagnetometerBridgeNode(bus::Bus& bus, bus::NodeOptions o
         std::lock_guard lock(grant_mutex_);
         grant_ = Grant{{g.header().step(), g.header().sim_time_ns(), g.step_period_ns()},
                        std::chrono::steady_clock::now()};
-      }) {}
+      }, {}, {}, trustFor(bus::topics::kStepGrant)) {}
 
 std::optional<bus::StepContext> MagnetometerBridgeNode::stepNow() const {
   std::lock_guard lock(grant_mutex_);

@@ -65,11 +65,7 @@ bool RecorderNode::recordedAlready(const std::string& topic, const msg::SampleHe
                                    const std::vector<std::uint8_t>& payload) {
   if (!resume_after_ || header.step() > *resume_after_) return false;
   if (topic == bus::topics::kHealth.name) return true;  // wall-clock data: never the same twice
-  bool same = false;
-  recording_.forEachAt(topic, header.step(), [&](const std::string& source, const std::vector<std::uint8_t>& stored) {
-    same = same || (source == bus::text(header.source()) && stored == payload);
-  });
-  if (same) {
+  if (recording_.holds(topic, header.step(), bus::text(header.source()), payload)) {
     ++resume_checked_;
   } else if (++resume_mismatches_ <= 5) {
     spdlog::warn("{}: resuming: {} of {} at step {} differs from the recording", name(), topic,
@@ -135,29 +131,20 @@ RecorderNode::~RecorderNode() {
 }
 
 void RecorderNode::storeIntruders() {
-  std::vector<msg::FaultEvent> events;
-  {
-    std::lock_guard lock(intruders_mutex_);
-    events.swap(intruder_events_);
-  }
-  for (const auto& event : events) {
+  for (const auto& intruder : intrudersFrom(intruders_stored_)) {
+    msg::FaultEvent event;
+    const std::int64_t period_ns = options_.period.count();
+    bus::stamp(event.header(), {intruder.step, static_cast<std::int64_t>(intruder.step) * period_ns, period_ns},
+               intruder.participant.empty() ? std::string("?") : intruder.participant);
+    bus::setText(event.kind(), "intruder");
+    bus::setText(event.topic(), intruder.topic);
+    bus::setText(event.writer(), intruder.writer);
+    event.channel(-1);
+    event.active(true);
     store(std::string(bus::topics::kFaultEvent.name), event.header(),
           bus::serialize<std::remove_cvref_t<decltype(bus::topics::kFaultEvent)>>(event));
+    ++intruders_stored_;
   }
-}
-
-void RecorderNode::onIntruder(const std::string& topic, const std::string& writer, const std::string& participant) {
-  msg::FaultEvent event;
-  const std::uint64_t step = newestGrant();
-  bus::stamp(event.header(), {step, static_cast<std::int64_t>(step) * options_.period.count(), options_.period.count()},
-             participant.empty() ? std::string("?") : participant);
-  bus::setText(event.kind(), "intruder");
-  bus::setText(event.topic(), topic);
-  bus::setText(event.writer(), writer);
-  event.channel(-1);
-  event.active(true);
-  std::lock_guard lock(intruders_mutex_);
-  intruder_events_.push_back(event);
 }
 
 void RecorderNode::step(const bus::StepContext& ctx) {

@@ -38,12 +38,11 @@ class RecorderNode final : public bus::Component {
  private:
   void step(const bus::StepContext& ctx) override;
   /// Keeps a fault event of kind "intruder" (the writer's GUID, its participant
-  /// as the source) at the rig's newest step: the recorder reads every topic.
-  /// Stored from the step thread (storeIntruders), at the next step or as the node goes.
-  void onIntruder(const std::string& topic, const std::string& writer, const std::string& participant) override;
+  /// as the source, at the step granted when it was seen) for each intruder
+  /// not kept yet: the recorder reads every topic. From the step thread, at
+  /// each step and as the node goes.
   void storeIntruders();
-  std::mutex intruders_mutex_;
-  std::vector<msg::FaultEvent> intruder_events_;  // under intruders_mutex_
+  std::size_t intruders_stored_ = 0;
   /// Commits the last steps: a launcher on another host summarises the
   /// recording as soon as this recorder reports STOPPED.
   void beforeStopped() override;

@@ -61,7 +61,11 @@ TEST_CASE("samples that do not decode are dropped and counted, the node runs on"
   bus::Bus node_bus({domain, bus::NetworkProfile::kLoopback, "magnetometer"});
   bus::Bus rogue_bus({domain, bus::NetworkProfile::kLoopback, "rogue"});
   Script script(script_bus, {"dynamics_server", schedule});
-  magnetometer::MagnetometerNode node(node_bus, test::fedByScript({"magnetometer", schedule}), params);
+  // The rogue is let in as a producer: what is tried here is the decoder, not
+  // the trust a stranger on a stepped topic meets (InputTrustTest).
+  auto options = test::fedByScript({"magnetometer", schedule});
+  options.trusted.push_back("rogue");
+  magnetometer::MagnetometerNode node(node_bus, options, params);
   std::mutex health_mutex;
   msg::Health last_node_health;
   bus::ReaderOf<bus::topics::kHealth> health_watch(script_bus, bus::topics::kHealth,
