@@ -134,9 +134,9 @@ TEST_CASE("an intruder's samples are ignored, counted once, and end a lockstep n
   REQUIRE(test::within(10, [&] { return rig.consumer.at(1).has_value(); }));
   for (std::uint64_t k = 2; k < 5; ++k) intruder.write(reading(k, 0.02));
   const std::string expected = "intruder on flatsat/gyro: participant 'rogue' (writer ";
-  REQUIRE(test::within(10, [&] { return rig.healthNow().intruders() == 1; }));
-  const msg::Health h = rig.healthNow();
-  CHECK(h.samples_rejected() == 3);
+  // Named once as it matched; each of its samples refused.
+  REQUIRE(test::within(10, [&] { return rig.healthNow().samples_rejected() == 3; }));
+  CHECK(rig.healthNow().intruders() == 1);
   // Nothing of the intruder's is held: step 4 still sees the producer's step 1.
   REQUIRE(rig.consumer.at(4));
   CHECK(rig.consumer.at(4)->header().step() == 1);
@@ -148,6 +148,26 @@ TEST_CASE("an intruder's samples are ignored, counted once, and end a lockstep n
     INFO(what);
     CHECK(what.find(expected) != std::string::npos);
     CHECK(what.find("participant 'rogue'") != std::string::npos);
+  }
+}
+
+TEST_CASE("a weaker intruder, whose samples exclusive ownership drops, is named as it matches",
+          "[component][dds][trust]") {
+  Rig rig;
+  bus::QosTuning weaker;
+  weaker.ownership_strength = bus::kEmulatorStrength - 1;
+  bus::Bus intruder_bus({.domain_id = rig.domain, .participant_name = "rogue", .tuning = weaker});
+  bus::WriterOf<bus::topics::kGyro> intruder(intruder_bus, bus::topics::kGyro);
+  rig.matched();
+  REQUIRE(test::within(20, [&] { return intruder.matchedReaders() > 0; }));
+  // It has written nothing, and what it would write never reaches the reader.
+  REQUIRE(test::within(10, [&] { return rig.healthNow().intruders() == 1; }));
+  CHECK(rig.healthNow().samples_rejected() == 0);
+  try {
+    rig.consumer.waitFor(1);
+    FAIL("the lockstep wait went on past an intruder");
+  } catch (const bus::NodeFailure& e) {
+    CHECK(std::string(e.what()).find("intruder on flatsat/gyro: participant 'rogue' (writer ") != std::string::npos);
   }
 }
 
