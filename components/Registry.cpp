@@ -38,14 +38,15 @@ ComponentKind kind(const std::string& name, Read read) {
           ""};
 }
 
-/// A kind that only runs as its own process, for `reason`.
+/// A kind that only runs as its own process, for `reason`; its node reads `reads`.
 template <class Read>
-ComponentKind processOnly(const std::string& name, Read read, const std::string& reason) {
+ComponentKind processOnly(const std::string& name, Read read, const std::string& reason,
+                          std::vector<std::string> reads) {
   return {name, "flatsat-" + name,
           [read](const bus::Scenario& s, const bus::NodeArgs& a, bus::ConfigProblems& p) {
             read(s, a, p);
           },
-          {}, reason};
+          {}, reason, std::move(reads)};
 }
 
 }  // namespace
@@ -69,9 +70,11 @@ const std::vector<ComponentKind>& componentKinds() {
       kind<recorder::RecorderNode>("recorder", recorder::readParams),
       processOnly("magnetometer_bridge", magnetometer_bridge::readParams,
                   "a hardware bridge: it publishes as its serial device delivers, on the wall "
-                  "clock, over the emulator at a higher DDS ownership strength"),
+                  "clock, over the emulator at a higher DDS ownership strength",
+                  {std::string(bus::topics::kStepGrant.name)}),  // MagnetometerBridgeNode::grants_
       processOnly("magnetometer_device", magnetometer_device::readParams,
-                  "a device stand-in: it plays a real unit on a pseudo-terminal, on the wall clock"),
+                  "a device stand-in: it plays a real unit on a pseudo-terminal, on the wall clock",
+                  {std::string(bus::topics::kTruth.name)}),  // MagnetometerDeviceNode::truth_
       kind<thruster_sequencer::ThrusterSequencerNode>("thruster_sequencer",
                                                       thruster_sequencer::readParams),
       kind<star_tracker::StarTrackerNode>("star_tracker", star_tracker::readParams),

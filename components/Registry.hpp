@@ -21,6 +21,9 @@ struct ComponentKind {
                                            const bus::NodeArgs&)>
       make;
   std::string not_composable;  ///< why a composed rig cannot hold it (empty: it can)
+  /// The registry topics a kind that cannot be composed reads (its DDS Security
+  /// grant, tools/GrantsCommand.hpp); a composable kind's are seen on an in-process bus.
+  std::vector<std::string> reads;
 };
 
 const std::vector<ComponentKind>& componentKinds();

@@ -17,6 +17,7 @@
 #include "bus/Security.hpp"
 #include "bus/Serialization.hpp"
 #include "bus/TimeMaster.hpp"
+#include "tools/GrantsCommand.hpp"
 #include "tools/ToolBus.hpp"
 
 namespace flatsat::tools {
@@ -225,7 +226,7 @@ int replay(const ReplayOptions& o) {
   bus::BusOptions bus_options;
   bus_options.domain_id = resolveDomain(o.domain);
   bus::useNetwork(bus_options, bus::networkFromEnvironment());
-  bus_options.identity = bus::kOperatorIdentity;
+  bus_options.identity = kReplayIdentity;  // DDS Security: its own grant (tools/GrantsCommand.hpp)
   bus_options.participant_name = "flatsat-replay";
   // A component configured paced expects its producers' liveliness lease.
   bus_options.tuning.watch_liveliness = recording.meta(bus::meta::kMode) == "paced";

@@ -26,6 +26,7 @@
 #include "tools/EchoCommand.hpp"
 #include "tools/ExportCommand.hpp"
 #include "tools/FieldCommand.hpp"
+#include "tools/GrantsCommand.hpp"
 #include "tools/Fleet.hpp"
 #include "tools/HealthCommand.hpp"
 #include "tools/HzCommand.hpp"
@@ -578,6 +579,7 @@ int main(int argc, char** argv) {
       tools::addRecordCommand(app, tool_exit), tools::addReplayCommand(app, tool_exit),
       tools::addCmdCommand(app, tool_exit),    tools::addWebCommand(app, tool_exit)};
   for (auto* peer : tools::addBenchPeerCommands(app, tool_exit)) tool_cmds.push_back(peer);
+  tool_cmds.push_back(tools::addGrantsCommand(app, tool_exit));
 
   auto* clean_cmd = app.add_subcommand(
       "clean-shm", "remove Fast DDS shared-memory files no live process uses");

@@ -2,7 +2,8 @@
 #pragma once
 // DDS Security files for a test, made by deploy/security/make-certs.sh in a
 // temporary directory of this process and removed with it. Needs
-// FLATSAT_SOURCE_DIR (the repository root) from the test's CMakeLists.
+// FLATSAT_SOURCE_DIR (the repository root) and FLATSAT_BIN_DIR (where the
+// flatsat tool that prints the grants is) from the test's CMakeLists.
 #include <catch2/catch.hpp>
 
 #include <unistd.h>
@@ -21,7 +22,7 @@ struct Certificates {
       : dir(std::filesystem::temp_directory_path() /
             ("flatsat-certs-" + std::to_string(::getpid()))) {
     std::filesystem::remove_all(dir);
-    const auto made = runCommand("bash " FLATSAT_SOURCE_DIR "/deploy/security/make-certs.sh " +
+    const auto made = runCommand("FLATSAT_TOOL=" FLATSAT_BIN_DIR "/flatsat bash " FLATSAT_SOURCE_DIR "/deploy/security/make-certs.sh " +
                                  dir.string() + " " + identities + " 2>&1");
     INFO(made.output);
     REQUIRE(made.exit_code == 0);
