@@ -18,6 +18,7 @@
 #include <fastrtps/utils/IPLocator.h>
 #include <spdlog/spdlog.h>
 
+#include "bus/FastDdsLog.hpp"
 #include "bus/Security.hpp"
 
 namespace flatsat::bus {
@@ -297,12 +298,14 @@ Bus::Bus(const BusOptions& options) : options_(options) {
     dds::DomainParticipantFactory::get_instance()->delete_participant(participant_);
     throw std::runtime_error(options.participant_name + ": could not create the publisher and subscribers");
   }
+  attachFastDdsLog(*this, {subscriber_, watch_subscriber_});
 }
 
 Bus::Bus(const BusOptions& options, LocalHub& hub) : options_(options), hub_(&hub) {}
 
 Bus::~Bus() {
   if (participant_ == nullptr) return;  // in-process
+  detachFastDdsLog(*this);
   {
     std::lock_guard lock(readers_mutex_);
     closing_ = true;  // the readers still here go with delete_contained_entities
@@ -368,7 +371,7 @@ dds::DataReader* Bus::createReader(dds::Topic& topic, const dds::DataReaderQos& 
   const bool watches = !(qos.liveliness().lease_duration == eprosima::fastrtps::c_TimeInfinite);
   holdWatchers();
   dds::DataReader* reader =
-      (watches ? watch_subscriber_ : subscriber_)->create_datareader(&topic, qos, listener);
+      (watches ? watch_subscriber_ : subscriber_)->create_datareader(&topic, qos, listener, fastDdsReaderMask());
   if (reader != nullptr && watches) ++watchers_;
   releaseWatchers();
   if (reader == nullptr) {
