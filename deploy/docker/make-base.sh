@@ -7,7 +7,7 @@
 # Does nothing when IMAGE exists. The Dockerfile takes it as
 # --build-arg BASE=IMAGE; with a registry, BASE defaults to debian:bookworm-slim.
 # Environment: FLATSAT_DEBIAN_MIRROR (default: the first http(s) archive in
-# this machine's apt sources, else http://deb.debian.org/debian), DOCKER.
+# this machine's apt sources; there is no other), DOCKER.
 set -euo pipefail
 image="${1:-flatsat-base:bookworm}"
 docker="${DOCKER:-docker}"
@@ -28,7 +28,10 @@ if [ -z "$mirror" ]; then
   mirror=$(grep -hoE '^(URIs:|deb) +https?://[^ ]+/debian/?( |$)' /etc/apt/sources.list \
              /etc/apt/sources.list.d/*.list /etc/apt/sources.list.d/*.sources 2>/dev/null |
            grep -oE 'https?://[^ ]+' | head -n1 || true)
-  mirror="${mirror:-http://deb.debian.org/debian}"
+  if [ -z "$mirror" ]; then
+    echo "$0: no http(s) Debian archive in /etc/apt/sources.list{,.d/*}: set FLATSAT_DEBIAN_MIRROR" >&2
+    exit 2
+  fi
 fi
 root=$(mktemp -d /tmp/flatsat-base.XXXXXX)
 trap 'rm -rf "$root"' EXIT
