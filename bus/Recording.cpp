@@ -109,6 +109,7 @@ Recording::~Recording() {
   }
   sqlite3_finalize(insert_);
   sqlite3_finalize(insert_many_);
+  sqlite3_finalize(range_);
   sqlite3_close(db_);
 }
 
@@ -182,6 +183,7 @@ void Recording::insert(const std::string& topic, std::uint64_t step, const std::
   if (!writing_) throw std::logic_error(path_ + ": opened for reading, not for inserting");
   std::lock_guard lock(queue_mutex_);
   throwIfFailed();
+  windows_.clear();  // holds() reads the rows again: this one may be in a window
   queued_.add(topic, step, source, sim_time_ns,
               {reinterpret_cast<const char*>(payload.data()), payload.size()});
 }
@@ -306,6 +308,56 @@ void Recording::forEachAt(
   while (sqlite3_step(s.stmt) == SQLITE_ROW) visit(text(s.stmt, 0), blob(s.stmt, 1));
 }
 
+bool Recording::holds(const std::string& topic, std::uint64_t step, const std::string& source,
+                      const std::vector<std::uint8_t>& payload) const {
+  const auto lock = settle();
+  if (range_ == nullptr &&
+      sqlite3_prepare_v2(db_,
+                         "SELECT step, payload FROM samples WHERE topic = ? AND source = ? AND step >= ? AND step < ? "
+                         "ORDER BY step",
+                         -1, &range_, nullptr) != SQLITE_OK) {
+    throw std::runtime_error(path_ + ": " + sqlite3_errmsg(db_));
+  }
+  Window& window = windows_[topic][source];
+  if (step < window.first || step >= window.end) {
+    // SQLITE_STATIC: the names outlive the query, which read() runs to its end.
+    sqlite3_bind_text(range_, 1, topic.data(), static_cast<int>(topic.size()), SQLITE_STATIC);
+    sqlite3_bind_text(range_, 2, source.data(), static_cast<int>(source.size()), SQLITE_STATIC);
+    window.read(range_, step);
+  }
+  return window.holds(step, payload);
+}
+
+void Recording::Window::read(sqlite3_stmt* range, std::uint64_t from) {
+  first = from;
+  end = from + kWindowSteps;
+  steps.clear();
+  payload_ends.clear();
+  bytes.clear();
+  sqlite3_bind_int64(range, 3, static_cast<sqlite3_int64>(first));
+  sqlite3_bind_int64(range, 4, static_cast<sqlite3_int64>(end));
+  while (sqlite3_step(range) == SQLITE_ROW) {
+    steps.push_back(static_cast<std::uint64_t>(sqlite3_column_int64(range, 0)));
+    const auto size = static_cast<std::size_t>(sqlite3_column_bytes(range, 1));
+    if (size > 0) bytes.append(static_cast<const char*>(sqlite3_column_blob(range, 1)), size);
+    payload_ends.push_back(bytes.size());
+  }
+  sqlite3_reset(range);
+}
+
+bool Recording::Window::holds(std::uint64_t step, const std::vector<std::uint8_t>& payload) const {
+  // A key stored twice (none should be) matches when either copy does.
+  for (auto i = static_cast<std::size_t>(std::lower_bound(steps.begin(), steps.end(), step) - steps.begin());
+       i < steps.size() && steps[i] == step; ++i) {
+    const std::size_t begin = i == 0 ? 0 : payload_ends[i - 1];
+    if (payload_ends[i] - begin == payload.size() &&
+        std::equal(payload.begin(), payload.end(), reinterpret_cast<const std::uint8_t*>(bytes.data()) + begin)) {
+      return true;
+    }
+  }
+  return false;
+}
+
 std::map<std::string, std::set<std::string>> Recording::topicSources() const {
   const auto lock = settle();
   Statement s(db_, "SELECT DISTINCT topic, source FROM samples", path_);
@@ -331,6 +383,7 @@ std::optional<std::uint64_t> Recording::lastStep(const std::string& topic) const
 
 void Recording::eraseAfter(std::uint64_t step) {
   const auto lock = settle();
+  windows_.clear();
   Statement s(db_, "DELETE FROM samples WHERE step > ?", path_);
   sqlite3_bind_int64(s.stmt, 1, static_cast<sqlite3_int64>(step));
   if (sqlite3_step(s.stmt) != SQLITE_DONE) {

@@ -67,6 +67,16 @@ class Recording {
   void forEachAt(const std::string& topic, std::uint64_t step,
                  const std::function<void(const std::string& source,
                                           const std::vector<std::uint8_t>& payload)>& visit) const;
+  /// Whether `topic` holds a sample of `source` stamped `step` with exactly
+  /// these bytes: what a resumed recorder asks of every sample of the steps
+  /// it checks. forEachAt() searches the (topic, source, step) index by topic
+  /// alone and reads every step of the topic, so a resume's check phase went
+  /// quadratic in its steps; this reads the rows of one (topic, source) for
+  /// kWindowSteps steps from `step` on in one range query of the full index
+  /// and answers the samples after it from them (a producer's samples come
+  /// in step order). Any insert or erase drops what was read.
+  bool holds(const std::string& topic, std::uint64_t step, const std::string& source,
+             const std::vector<std::uint8_t>& payload) const;
   std::uint64_t count(const std::string& topic) const;
   /// The highest step recorded on `topic`; nothing when it has no sample.
   std::optional<std::uint64_t> lastStep(const std::string& topic) const;
@@ -106,6 +116,15 @@ class Recording {
           {b + row.payload, row.payload_size});
     }
   };
+  /// holds()'s rows of one (topic, source) stamped first..end - 1, in step order.
+  struct Window {
+    std::uint64_t first = 0, end = 0;
+    std::vector<std::uint64_t> steps;
+    std::vector<std::size_t> payload_ends;  // payload i is bytes[payload_ends[i - 1], payload_ends[i])
+    std::string bytes;
+    void read(sqlite3_stmt* range, std::uint64_t from);
+    bool holds(std::uint64_t step, const std::vector<std::uint8_t>& payload) const;
+  };
   void exec(const char* sql) const;
   bool holdsSamples() const;
   void store(const Rows& rows) const;
@@ -121,6 +140,13 @@ class Recording {
   sqlite3* db_ = nullptr;
   sqlite3_stmt* insert_ = nullptr;       // one row
   sqlite3_stmt* insert_many_ = nullptr;  // kRowsPerInsert rows
+  mutable sqlite3_stmt* range_ = nullptr;  // holds()' range query, prepared at its first call
+  /// Steps of one (topic, source) a range query of holds() reads: the
+  /// query's cost shared by 64 samples (docs/performance.md, "A resume's
+  /// check"). The default rig's windows hold about 170 kB.
+  static constexpr std::uint64_t kWindowSteps = 64;
+  /// topic -> source -> rows, under queue_mutex_; std::less<>: found without a copy of the names.
+  mutable std::map<std::string, std::map<std::string, Window, std::less<>>, std::less<>> windows_;
   /// Rows per INSERT of a batch: SQLite's work per statement (its virtual
   /// machine's start, the reset) is paid once for them (docs/performance.md).
   static constexpr int kRowsPerInsert = 16;

@@ -435,6 +435,72 @@ std::string joined(const std::vector<double>& values) {
 /// fraction issue 10 asks for is the medians' ratio.
 constexpr int kRunsPerFigure = 3;
 
+/// [s] simulated time of bench's composed resume figure: 20,000 steps, about a
+/// second to record each time, where 600 s (a third of a second) is the noise's.
+constexpr double kComposedResumeSeconds = 2000.0;
+
+/// `--resume` of a run that completed: K is its last step, so the resumed
+/// run is all check phase (every sample compared with the recording, none
+/// stored). Its steps/s against the recording run's is how fast a resume
+/// re-checks (issue 30, point 8: at least half as fast). Every step is
+/// recorded: decimated, a resume checks only the recorded steps' samples.
+/// `o` runs the scenario as processes or composed; its figures are printed
+/// under `prefix`, each a median of pairs run one after the other.
+int resumeBench(RunOptions o, const std::string& prefix, int pairs) {
+  std::vector<double> recorded, checked, ratios;
+  std::uint64_t steps = 0;
+  for (int i = 0; i < pairs; ++i) {
+    nlohmann::ordered_json summary;
+    if (const int rc = run(o, &summary); rc != 0) return rc;
+    recorded.push_back(summary["steps_per_second"].get<double>());
+    RunOptions resume;
+    resume.scenario = o.scenario;
+    resume.resume = o.out;
+    resume.composed = o.composed;
+    resume.quiet = true;
+    resume.plots = false;
+    resume.log_level = o.log_level;
+    // Fails (exit 1) when any sample of the recorded steps came out different.
+    if (const int rc = run(resume, &summary); rc != 0) return rc;
+    checked.push_back(summary["steps_per_second"].get<double>());
+    // Each pair's own ratio: its two runs saw the same phase of the machine.
+    ratios.push_back(checked.back() / recorded.back());
+    steps = summary["steps"].get<std::uint64_t>();
+    fs::remove_all(o.out);
+  }
+  std::string ratio_runs;
+  for (const double r : ratios) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%s%.3f", ratio_runs.empty() ? "" : ",", r);
+    ratio_runs += buffer;
+  }
+  std::printf("%s_steps=%llu\n", prefix.c_str(), static_cast<unsigned long long>(steps));
+  std::printf("%s_record_steps_per_s=%.1f\n", prefix.c_str(), tools::quantile(recorded, 0.5));
+  std::printf("%s_check_steps_per_s=%.1f\n", prefix.c_str(), tools::quantile(checked, 0.5));
+  std::printf("%s_check_speed_ratio=%.3f\n", prefix.c_str(), tools::quantile(ratios, 0.5));
+  std::printf("%s_check_speed_ratio_runs=%s\n", prefix.c_str(), ratio_runs.c_str());
+  return 0;
+}
+
+/// resumeBench() of `scenario` as processes (`--duration-s`), as `flatsat run
+/// --resume` runs it, and composed (kComposedResumeSeconds) when it can be.
+int resumeFigures(const std::string& scenario, double duration_s, bool quick) {
+  bus::Scenario loaded;
+  if (!loadChecked(scenario, "", loaded)) return kExitBadInput;
+  RunOptions o;
+  o.scenario = scenario;
+  o.out = (fs::temp_directory_path() / ("flatsat-bench-resume-" + std::to_string(::getpid()))).string();
+  o.overrides = {"duration_s=" + std::to_string(duration_s), "duration_orbits=null"};
+  o.quiet = true;
+  o.plots = false;
+  o.log_level = "warn";
+  if (const int rc = resumeBench(o, "resume", quick ? 1 : kRunsPerFigure); rc != 0) return rc;
+  if (!tools::composedProblems(loaded).empty()) return 0;
+  o.composed = true;
+  o.overrides.push_back("duration_s=" + std::to_string(kComposedResumeSeconds));
+  return resumeBench(o, "resume_composed", kRunsPerFigure);
+}
+
 int bench(const std::string& scenario, double duration_s, bool quick) {
   const double paced_s = quick ? 30.0 : 60.0;
   bus::Scenario loaded;
@@ -478,6 +544,7 @@ int bench(const std::string& scenario, double duration_s, bool quick) {
   // 1 Hz as 42 writes its output files (issue 10's composed figure).
   if (!tools::composedProblems(loaded).empty()) {
     std::cerr << "flatsat bench: " << scenario << " cannot run composed; no composed figures\n";
+    if (const int rc = resumeFigures(scenario, duration_s, quick); rc != 0) return rc;
     return pacedBench(scenario, paced_s);
   }
   o.composed = true;
@@ -500,6 +567,7 @@ int bench(const std::string& scenario, double duration_s, bool quick) {
   std::printf("composed_steps_per_s_runs=%s\n", joined(composed_rates).c_str());
   std::printf("composed_speed_factor=%.1f\n", composed_rate * loaded.step_s);
   if (const int rc = fleetBench(o, quick); rc != 0) return rc;
+  if (const int rc = resumeFigures(scenario, duration_s, quick); rc != 0) return rc;
   return pacedBench(scenario, paced_s);
 }
 
@@ -560,6 +628,9 @@ int main(int argc, char** argv) {
   bool bench_middleware = false;
   bench_cmd->add_flag("--middleware", bench_middleware,
                       "only the middleware figures: hop_us, hop_us_p99, limit_steps_per_s");
+  bool bench_resume = false;
+  bench_cmd->add_flag("--resume", bench_resume,
+                      "only the resume figures: a run recorded, then re-checked by --resume (resume_*)");
 
   int orbit_exit = 0;
   auto* orbit_cmd = tools::addOrbitCommand(app, orbit_exit);
@@ -609,6 +680,7 @@ int main(int argc, char** argv) {
     tools::printMiddlewareBench(bench_quick, &all_measured);
     return all_measured ? 0 : kExitFailed;
   }
+  if (bench_cmd->parsed() && bench_resume) return resumeFigures(bench_scenario, bench_duration_s, bench_quick);
   if (bench_cmd->parsed()) return bench(bench_scenario, bench_duration_s, bench_quick);
   bus::Scenario scenario;
   if (!loadChecked(check_file, "", scenario)) return kExitBadInput;

@@ -100,6 +100,43 @@ TEST_CASE("Recording finds a topic's last step and erases what came after a step
   std::filesystem::remove(path.string() + "-shm");
 }
 
+TEST_CASE("A recording holds a sample only with its topic, source, step and every byte", "[recording]") {
+  const auto path = std::filesystem::temp_directory_path() /
+                    ("flatsat-recording-holds-" + std::to_string(::getpid()) + ".sqlite");
+  std::filesystem::remove(path);
+  {
+    Recording first(path.string(), Recording::Access::kCreate);
+    for (std::uint64_t step = 0; step < 100; ++step) {
+      first.insert("t", step, "x", 0, {1, static_cast<std::uint8_t>(step)});
+      first.insert("t", step, "y", 0, {2, static_cast<std::uint8_t>(step)});
+    }
+    first.insert("e", 7, "x", 0, {});
+    first.commit();
+  }
+  {
+    // Reopened for writing, as a resumed recorder opens it (with its index), and
+    // asked both before and after rows queued since.
+    Recording r(path.string(), Recording::Access::kCreate);
+    CHECK(r.holds("t", 42, "x", {1, 42}));
+    CHECK(r.holds("t", 42, "y", {2, 42}));
+    CHECK_FALSE(r.holds("t", 42, "x", {2, 42}));     // another source's bytes
+    CHECK_FALSE(r.holds("t", 42, "x", {1, 43}));     // one byte off
+    CHECK_FALSE(r.holds("t", 42, "x", {1, 42, 0}));  // one byte more
+    CHECK_FALSE(r.holds("t", 42, "x", {1}));         // one byte less
+    CHECK_FALSE(r.holds("t", 100, "x", {1, 100}));   // a step not recorded
+    CHECK_FALSE(r.holds("u", 42, "x", {1, 42}));     // another topic
+    CHECK(r.holds("e", 7, "x", {}));
+    CHECK_FALSE(r.holds("e", 7, "x", {0}));
+    r.insert("t", 100, "x", 0, {1, 100});
+    CHECK(r.holds("t", 100, "x", {1, 100}));
+    r.commit();
+    CHECK(r.holds("t", 99, "y", {2, 99}));
+  }
+  std::filesystem::remove(path);
+  std::filesystem::remove(path.string() + "-wal");
+  std::filesystem::remove(path.string() + "-shm");
+}
+
 TEST_CASE("A recording still open (as after a crash) answers without its index, as it does closed",
           "[recording]") {
   const auto path = std::filesystem::temp_directory_path() /
