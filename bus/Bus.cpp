@@ -334,13 +334,12 @@ std::optional<std::string> Bus::participantName(const eprosima::fastrtps::rtps::
   return std::nullopt;
 }
 
-void Bus::countDroppedSample(const char* type_name) {
+void Bus::countDroppedSample(const char* what) {
   const std::uint64_t n = ++samples_dropped_;
   std::uint64_t decade = 1;  // a flood of bad samples does not flood the log
   while (decade <= n / 10) decade *= 10;
   if (n == decade) {
-    spdlog::warn("{}: dropped a sample that does not decode as {} ({} so far)",
-                 options_.participant_name, type_name, n);
+    spdlog::warn("{}: dropped a sample of {} ({} so far)", options_.participant_name, what, n);
   }
 }
 

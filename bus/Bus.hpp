@@ -106,13 +106,14 @@ class Bus : private eprosima::fastdds::dds::DomainParticipantListener {
   std::uint32_t domainId() const { return options_.domain_id; }
   const QosTuning& tuning() const { return options_.tuning; }
 
-  /// Samples received on any reader of this participant that did not decode.
+  /// Samples received on any reader of this participant that did not decode,
+  /// and those Fast DDS dropped or lost before (bus/FastDdsLog.hpp).
   std::uint64_t samplesDropped() const { return samples_dropped_.load(); }
-  /// Counts a dropped sample of that type; logs the 1st, 10th, 100th, ...
-  void countDroppedSample(const char* type_name);
+  /// Counts a dropped sample, `what`: its type and why; logs the 1st, 10th, 100th, ...
+  void countDroppedSample(const char* what);
   /// What this bus's topic types (GuardedType) call for each sample that does not decode.
   std::function<void(const char*)> dropCounter() {
-    return [this](const char* type_name) { countDroppedSample(type_name); };
+    return [this](const char* type_name) { countDroppedSample((std::string(type_name) + " that does not decode").c_str()); };
   }
 
   /// The name a discovered participant gave itself (its component's name in a
