@@ -634,10 +634,20 @@ void Input<Def>::dropBefore(std::uint64_t k) {
   auto end = samples_.lower_bound(*stamp);
   // Paced, the newest sample stays until a newer one arrives: a late producer's
   // last value is held (stale) for the steps after, up to the lease, after which
-  // its producer counts as dead (liveliness_lease_s) and nothing is held.
-  if (node_.paced() && end != samples_.begin() && (end == samples_.end() || end->first != *stamp) &&
-      *stamp - std::prev(end)->first <= hold_steps_) {
-    --end;
+  // its producer counts as dead (liveliness_lease_s) and its value is not held.
+  if (node_.paced() && end != samples_.begin() && (end == samples_.end() || end->first != *stamp)) {
+    const auto last = std::prev(end);
+    if (*stamp - last->first <= hold_steps_) {
+      --end;
+    } else if (Sample missing = last->second; takeAsMissing(missing)) {
+      // Its consumers then step on the topic's missing form (a dropout; its
+      // header still names the last real sample, so dueAt() has nothing)
+      // rather than stop: a producer gone silent, dead or silenced by an
+      // intruder's ownership, stalls nobody else (architecture, "Trust on the bus").
+      samples_.erase(samples_.begin(), end);
+      samples_.insert_or_assign(*stamp, missing);
+      return;
+    }
   }
   samples_.erase(samples_.begin(), end);
 }

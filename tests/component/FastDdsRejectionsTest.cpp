@@ -106,6 +106,24 @@ class AsFromAnotherProcess {
   eprosima::fastrtps::LibrarySettingsAttributes saved_;
 };
 
+/// A reader of fault_cmd and a rogue that writes raw payloads on it, both
+/// in this process; `separate`: as if they were not.
+template <class Delivery>
+struct RogueAndReader {
+  Delivery separate;
+  std::uint32_t domain = test::testDomain();
+  bus::Bus reader_bus{{domain, bus::NetworkProfile::kLoopback, "reader"}};
+  bus::Bus rogue_bus{{domain, bus::NetworkProfile::kLoopback, "rogue"}};
+  std::atomic<int> taken{0};
+  bus::ReaderOf<bus::topics::kFaultCmd> reader{reader_bus, bus::topics::kFaultCmd,
+                                               [this](const msg::FaultCmd&) { ++taken; }};
+  test::RogueWriter rogue{rogue_bus, bus::topics::kFaultCmd};
+  RogueAndReader() { REQUIRE(rogue.waitForReaders(1, std::chrono::seconds(10))); }
+};
+
+/// Intraprocess delivery as the process has it.
+struct AsConfigured {};
+
 bool waitFor(const std::function<bool()>& done, std::chrono::seconds timeout) {
   const auto deadline = std::chrono::steady_clock::now() + timeout;
   while (!done()) {
@@ -127,16 +145,9 @@ test::Bytes oversized(std::uint32_t extra) {
 
 TEST_CASE("payloads larger than the type allows are counted in the bus, Fast DDS's log of them stays short",
           "[component][dds][malformed]") {
-  AsFromAnotherProcess separate;
   CapturedLog log;
-  const std::uint32_t domain = test::testDomain();
-  bus::Bus reader_bus({domain, bus::NetworkProfile::kLoopback, "reader"});
-  bus::Bus rogue_bus({domain, bus::NetworkProfile::kLoopback, "rogue"});
-  std::atomic<int> taken{0};
-  bus::ReaderOf<bus::topics::kFaultCmd> reader(reader_bus, bus::topics::kFaultCmd,
-                                               [&](const msg::FaultCmd&) { ++taken; });
-  test::RogueWriter rogue(rogue_bus, bus::topics::kFaultCmd);
-  REQUIRE(rogue.waitForReaders(1, std::chrono::seconds(10)));
+  RogueAndReader<AsFromAnotherProcess> rig;
+  auto& [separate, domain, reader_bus, rogue_bus, taken, reader, rogue] = rig;
 
   constexpr std::uint64_t kSamples = 300;
   const std::uint64_t rejected_before = bus::fastDdsRejectedSamples();
@@ -173,14 +184,9 @@ TEST_CASE("payloads larger than the type allows are counted in the bus, Fast DDS
 
 TEST_CASE("an empty payload from another process is counted when Fast DDS reports it lost",
           "[component][dds][malformed]") {
-  AsFromAnotherProcess separate;
   CapturedLog log;
-  const std::uint32_t domain = test::testDomain();
-  bus::Bus reader_bus({domain, bus::NetworkProfile::kLoopback, "reader"});
-  bus::Bus rogue_bus({domain, bus::NetworkProfile::kLoopback, "rogue"});
-  bus::ReaderOf<bus::topics::kFaultCmd> reader(reader_bus, bus::topics::kFaultCmd, [](const msg::FaultCmd&) {});
-  test::RogueWriter rogue(rogue_bus, bus::topics::kFaultCmd);
-  REQUIRE(rogue.waitForReaders(1, std::chrono::seconds(10)));
+  RogueAndReader<AsFromAnotherProcess> rig;
+  auto& [separate, domain, reader_bus, rogue_bus, taken, reader, rogue] = rig;
 
   // The empty samples never arrive (Fast DDS drops their submessage), and the
   // reader waits for them, holding back what follows, until the writer's
@@ -201,12 +207,8 @@ TEST_CASE("an empty payload from another process is counted when Fast DDS report
 
 TEST_CASE("an empty payload from this process reaches the bus's topic type, which counts it",
           "[component][dds][malformed]") {
-  const std::uint32_t domain = test::testDomain();
-  bus::Bus reader_bus({domain, bus::NetworkProfile::kLoopback, "reader"});
-  bus::Bus rogue_bus({domain, bus::NetworkProfile::kLoopback, "rogue"});
-  bus::ReaderOf<bus::topics::kFaultCmd> reader(reader_bus, bus::topics::kFaultCmd, [](const msg::FaultCmd&) {});
-  test::RogueWriter rogue(rogue_bus, bus::topics::kFaultCmd);
-  REQUIRE(rogue.waitForReaders(1, std::chrono::seconds(10)));
+  RogueAndReader<AsConfigured> rig;
+  auto& [separate, domain, reader_bus, rogue_bus, taken, reader, rogue] = rig;
   for (int i = 0; i < 5; ++i) rogue.write({});
   REQUIRE(rogue.waitForAcknowledgments(std::chrono::seconds(5)));
   CHECK(waitFor([&] { return reader_bus.samplesDropped() >= 5; }, std::chrono::seconds(5)));

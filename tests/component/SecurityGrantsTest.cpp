@@ -18,20 +18,13 @@
 #include "bus/Security.hpp"
 #include "bus/Topics.hpp"
 #include "components/Registry.hpp"
-#include "tests/support/Certificates.hpp"
+#include "tests/support/SecuredBus.hpp"
 #include "tests/support/TestDomain.hpp"
 
 namespace fs = std::filesystem;
 using namespace flatsat;
 
 namespace {
-
-bus::BusOptions secured(std::uint32_t domain, const fs::path& dir, const std::string& identity) {
-  return {.domain_id = domain,
-          .participant_name = identity,
-          .security_dir = dir.string(),
-          .identity = identity};
-}
 
 /// Makes (and deletes) a writer on the registry topic `name`; throws what
 /// bus::Writer throws when the grant refuses it.
@@ -71,7 +64,7 @@ TEST_CASE("each identity's grant lets it write its own topics and refuses every 
 
   for (const auto& kind : componentKinds()) {
     INFO("identity " << kind.name);
-    bus::Bus bus(secured(domain, certs.dir, kind.name));
+    bus::Bus bus(test::secured(certs, domain, kind.name));
     // Its own topic: the first stepped one the registry names it (or, a bridge, its producer)
     // the producer of; else its health.
     std::string own(bus::topics::kHealth.name);
@@ -97,13 +90,13 @@ TEST_CASE("each identity's grant lets it write its own topics and refuses every 
   }
 
   {  // a component reads only what its node reads: the gyro takes the truth, never the commands
-    bus::Bus gyro(secured(domain, certs.dir, "gyro"));
+    bus::Bus gyro(test::secured(certs, domain, "gyro"));
     CHECK_NOTHROW(bus::ReaderOf<bus::topics::kTruth>(gyro, bus::topics::kTruth, [](const msg::TruthState&) {}));
     CHECK_THROWS(bus::ReaderOf<bus::topics::kDipoleCmd>(gyro, bus::topics::kDipoleCmd, [](const msg::DipoleCmd&) {}));
   }
 
   {  // the operator commands and does not write the rig's data
-    bus::Bus operator_bus(secured(domain, certs.dir, bus::kOperatorIdentity));
+    bus::Bus operator_bus(test::secured(certs, domain, bus::kOperatorIdentity));
     CHECK_THROWS_WITH(writerOn(operator_bus, truth), Catch::Contains("could not create a writer on " + truth));
     CHECK_FALSE(mayWrite(operator_bus, std::string(bus::topics::kStepGrant.name)));
     CHECK_FALSE(mayWrite(operator_bus, std::string(bus::topics::kDipoleCmd.name)));
@@ -115,7 +108,7 @@ TEST_CASE("each identity's grant lets it write its own topics and refuses every 
   }
 
   {  // `flatsat replay` feeds recorded stepped topics and grants, and does not command
-    bus::Bus replay_bus(secured(domain, certs.dir, "replay"));
+    bus::Bus replay_bus(test::secured(certs, domain, "replay"));
     CHECK(mayWrite(replay_bus, truth));
     CHECK(mayWrite(replay_bus, std::string(bus::topics::kGyro.name)));
     CHECK(mayWrite(replay_bus, std::string(bus::topics::kStepGrant.name)));
@@ -138,7 +131,7 @@ TEST_CASE("every component's code makes its endpoints under its own grant", "[co
     // Each scenario that lists it: what a node reads depends on its parameters.
     // One participant for them all: a process that makes a hundred secured
     // participants in a row leaves the ones after unable to match.
-    bus::Bus bus(secured(domain, certs.dir, kind.name));
+    bus::Bus bus(test::secured(certs, domain, kind.name));
     for (const auto& scenario : scenarios) {
       if (!scenario.hasComponent(kind.name)) continue;
       INFO(kind.name << " of " << scenario.file);

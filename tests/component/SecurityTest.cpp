@@ -15,7 +15,7 @@
 #include "bus/Endpoints.hpp"
 #include "bus/Stamp.hpp"
 #include "bus/Topics.hpp"
-#include "tests/support/Certificates.hpp"
+#include "tests/support/SecuredBus.hpp"
 #include "tests/support/Run.hpp"
 #include "tests/support/TestDomain.hpp"
 #include "tests/support/Within.hpp"
@@ -24,13 +24,6 @@ namespace fs = std::filesystem;
 using namespace flatsat;
 
 namespace {
-
-bus::BusOptions secured(std::uint32_t domain, const fs::path& dir, const std::string& identity) {
-  return {.domain_id = domain,
-          .participant_name = identity,
-          .security_dir = dir.string(),
-          .identity = identity};
-}
 
 msg::FaultCmd faultCommand(std::uint64_t id) {
   msg::FaultCmd command;
@@ -47,7 +40,7 @@ TEST_CASE("with DDS Security only the operator commands, strangers and forged gr
   const test::Certificates certs("gyro operator");
   const std::uint32_t domain = test::testDomain();
 
-  bus::Bus gyro(secured(domain, certs.dir, "gyro"));
+  bus::Bus gyro(test::secured(certs, domain, "gyro"));
   std::atomic<int> received{0};
   std::atomic<std::uint64_t> last_id{0};
   bus::ReaderOf<bus::topics::kFaultCmd> commands(gyro, bus::topics::kFaultCmd,
@@ -57,7 +50,7 @@ TEST_CASE("with DDS Security only the operator commands, strangers and forged gr
                                                  });
 
   SECTION("a participant without a certificate neither sees nor injects commands") {
-    bus::Bus operator_bus(secured(domain, certs.dir, "operator"));
+    bus::Bus operator_bus(test::secured(certs, domain, "operator"));
     bus::WriterOf<bus::topics::kFaultCmd> genuine(operator_bus, bus::topics::kFaultCmd);
     // Two open participants: one listens, one injects.
     bus::Bus listener({.domain_id = domain, .participant_name = "eavesdropper"});
@@ -119,7 +112,9 @@ TEST_CASE("with DDS Security only the operator commands, strangers and forged gr
         (forged / "gyro" / "key.pem").string() + " 2>&1");
     INFO(signing.output);
     REQUIRE(signing.exit_code == 0);
-    CHECK_THROWS_WITH(bus::Bus(secured(domain, forged, "gyro")),
+    auto options = test::secured(certs, domain, "gyro");
+    options.security_dir = forged.string();
+    CHECK_THROWS_WITH(bus::Bus(options),
                       Catch::Contains("did not verify"));
   }
 }

@@ -19,6 +19,8 @@
 namespace flatsat::test {
 
 inline const std::string kFlatsat = std::string(FLATSAT_BIN_DIR) + "/flatsat";
+/// A hostile or broken participant (tests/support/hostile_participant.cpp).
+inline const std::string kHostile = std::string(FLATSAT_BIN_DIR) + "/hostile_participant";
 /// The default scenario, the one `flatsat run` runs without one named.
 inline const std::string kDefault = std::string(FLATSAT_SCENARIO_DIR) + "/default.yaml";
 

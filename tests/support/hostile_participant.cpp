@@ -13,17 +13,21 @@
 //   huge-dipole  a dipole command of ±1e300 A m² at each step granted
 //   magnetometer a plausible magnetometer reading at each step granted
 //   future       gyro readings stamped 1,000 steps and more past the rig's, as fast as it can
-// Prints what it wrote as `hostile: MODE wrote N samples`.
+// FLATSAT_SECURE_DIR: DDS Security with NAME's certificate and grant.
+// Prints what it wrote as `hostile: MODE wrote N samples`, or `hostile: MODE
+// refused: REASON` (exit 3) when the bus would not make its writer.
 #include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
+#include <stdexcept>
 #include <string>
 #include <thread>
 
 #include "bus/Bus.hpp"
 #include "bus/Endpoints.hpp"
+#include "bus/Security.hpp"
 #include "bus/Shutdown.hpp"
 #include "bus/Stamp.hpp"
 #include "bus/Topics.hpp"
@@ -31,11 +35,6 @@
 namespace {
 
 using namespace flatsat;
-
-/// The step context of grant k (the rig's own stamp of it).
-bus::StepContext contextOf(const msg::StepGrant& grant) {
-  return {grant.header().step(), grant.header().sim_time_ns(), grant.step_period_ns()};
-}
 
 template <class Def, class Fill>
 std::uint64_t writeEachStep(bus::Bus& bus, const Def& def, const std::string& name, Fill fill,
@@ -86,61 +85,70 @@ int main(int argc, char** argv) {
   tuning.watch_liveliness = true;
   tuning.lease = std::chrono::milliseconds(100);
   tuning.ownership_strength = argc > 4 ? std::atoi(argv[4]) : bus::kBridgeStrength;
-  bus::Bus bus({.domain_id = bus::domainFromEnvironment(0), .participant_name = name, .tuning = tuning});
+  // With FLATSAT_SECURE_DIR: NAME's certificate and grant, as a stolen key would give.
+  bus::Bus bus({.domain_id = bus::domainFromEnvironment(0),
+                .participant_name = name,
+                .tuning = tuning,
+                .security_dir = bus::securityDirFromEnvironment()});
   constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   std::uint64_t written = 0;
-  if (mode == "forge-stop") {
-    bus::WriterOf<bus::topics::kStepGrant> writer(bus, bus::topics::kStepGrant);
-    std::atomic<std::uint64_t> newest{0};
-    bus::ReaderOf<bus::topics::kStepGrant> grants(bus, bus::topics::kStepGrant, [&](const msg::StepGrant& g) {
-      if (!g.stop() && g.header().step() > newest) newest = g.header().step();
-    });
-    while (!bus::shutdownRequested() && std::chrono::steady_clock::now() < end) {
-      msg::StepGrant stop;
-      const std::uint64_t k = newest + 1;
-      bus::stamp(stop.header(), {k, static_cast<std::int64_t>(k) * 100'000'000, 100'000'000}, "dynamics_server");
-      stop.step_period_ns(100'000'000);
-      stop.final_step(k);
-      stop.stop(true);
-      writer.write(stop);
-      ++written;
-      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  try {
+    if (mode == "forge-stop") {
+      bus::WriterOf<bus::topics::kStepGrant> writer(bus, bus::topics::kStepGrant);
+      std::atomic<std::uint64_t> newest{0};
+      bus::ReaderOf<bus::topics::kStepGrant> grants(bus, bus::topics::kStepGrant, [&](const msg::StepGrant& g) {
+        if (!g.stop() && g.header().step() > newest) newest = g.header().step();
+      });
+      while (!bus::shutdownRequested() && std::chrono::steady_clock::now() < end) {
+        msg::StepGrant stop;
+        const std::uint64_t k = newest + 1;
+        bus::stamp(stop.header(), {k, static_cast<std::int64_t>(k) * 100'000'000, 100'000'000}, "dynamics_server");
+        stop.step_period_ns(100'000'000);
+        stop.final_step(k);
+        stop.stop(true);
+        writer.write(stop);
+        ++written;
+        std::this_thread::sleep_for(std::chrono::milliseconds(100));
+      }
+    } else if (mode == "nan-gyro" || mode == "huge-gyro") {
+      const double value = mode == "nan-gyro" ? kNaN : 1e300;
+      written = writeEachStep(bus, bus::topics::kGyro, name, [value](msg::GyroReading& s) {
+        s.w_body_rad_s({value, -value, value});
+        s.valid(true);
+      }, end);
+    } else if (mode == "huge-dipole") {
+      written = writeEachStep(bus, bus::topics::kDipoleCmd, name, [](msg::DipoleCmd& s) {
+        s.m_body_Am2({1e300, -1e300, 1e300});
+        s.active(true);
+      }, end);
+    } else if (mode == "magnetometer") {
+      written = writeEachStep(bus, bus::topics::kMagnetometer, name, [](msg::MagnetometerReading& s) {
+        s.b_body_T({2e-5, -1e-5, 3e-5});
+        s.valid(true);
+      }, end);
+    } else if (mode == "future") {
+      bus::WriterOf<bus::topics::kGyro> writer(bus, bus::topics::kGyro);
+      std::atomic<std::uint64_t> newest{0};
+      bus::ReaderOf<bus::topics::kStepGrant> grants(bus, bus::topics::kStepGrant, [&](const msg::StepGrant& g) {
+        if (!g.stop() && g.header().step() > newest) newest = g.header().step();
+      });
+      for (std::uint64_t i = 0; !bus::shutdownRequested() && std::chrono::steady_clock::now() < end; ++i) {
+        msg::GyroReading s;
+        const std::uint64_t k = newest + 1000 + i;
+        bus::stamp(s.header(), {k, static_cast<std::int64_t>(k) * 100'000'000, 100'000'000}, name);
+        s.w_body_rad_s({1e-3, 0.0, 0.0});
+        s.valid(true);
+        writer.write(s);
+        ++written;
+        if (i % 100 == 99) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+      }
+    } else {
+      std::fprintf(stderr, "hostile_participant: unknown mode '%s'\n", mode.c_str());
+      return 2;
     }
-  } else if (mode == "nan-gyro" || mode == "huge-gyro") {
-    const double value = mode == "nan-gyro" ? kNaN : 1e300;
-    written = writeEachStep(bus, bus::topics::kGyro, name, [value](msg::GyroReading& s) {
-      s.w_body_rad_s({value, -value, value});
-      s.valid(true);
-    }, end);
-  } else if (mode == "huge-dipole") {
-    written = writeEachStep(bus, bus::topics::kDipoleCmd, name, [](msg::DipoleCmd& s) {
-      s.m_body_Am2({1e300, -1e300, 1e300});
-      s.active(true);
-    }, end);
-  } else if (mode == "magnetometer") {
-    written = writeEachStep(bus, bus::topics::kMagnetometer, name, [](msg::MagnetometerReading& s) {
-      s.b_body_T({2e-5, -1e-5, 3e-5});
-      s.valid(true);
-    }, end);
-  } else if (mode == "future") {
-    bus::WriterOf<bus::topics::kGyro> writer(bus, bus::topics::kGyro);
-    std::atomic<std::uint64_t> newest{0};
-    bus::ReaderOf<bus::topics::kStepGrant> grants(bus, bus::topics::kStepGrant, [&](const msg::StepGrant& g) {
-      if (!g.stop() && g.header().step() > newest) newest = g.header().step();
-    });
-    for (std::uint64_t i = 0; !bus::shutdownRequested() && std::chrono::steady_clock::now() < end; ++i) {
-      msg::GyroReading s;
-      const std::uint64_t k = newest + 1000 + i;
-      bus::stamp(s.header(), {k, static_cast<std::int64_t>(k) * 100'000'000, 100'000'000}, name);
-      s.w_body_rad_s({1e-3, 0.0, 0.0});
-      s.valid(true);
-      writer.write(s);
-      ++written;
-      if (i % 100 == 99) std::this_thread::sleep_for(std::chrono::milliseconds(1));
-    }
-  } else {
-    std::fprintf(stderr, "hostile_participant: unknown mode '%s'\n", mode.c_str());
-    return 2;
+  } catch (const std::runtime_error& e) {  // a grant that does not allow the writer
+    std::printf("hostile: %s refused: %s\n", mode.c_str(), e.what());
+    return 3;
   }
   std::printf("hostile: %s wrote %llu samples\n", mode.c_str(), static_cast<unsigned long long>(written));
   return 0;

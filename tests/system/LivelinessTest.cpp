@@ -115,7 +115,8 @@ TEST_CASE("paced: a component killed mid-run is shown dead within the lease and 
                            exported.string())
               .exit_code == 0);
   // The attitude controller, a consumer of the tachometers, goes on with their last
-  // sample (stale) for the 1 s lease after the kill, then, its producer dead, stops.
+  // sample (stale) for the 1 s lease after the kill, then, its producer dead, with
+  // their missing form (a dropout): the loop never stops for a dead sensor.
   std::uint64_t last_tach = 0;
   for (const auto& s : test::exportedRows(exported, "wheel_tach")) {
     last_tach = std::max(last_tach, s["header"]["step"].get<std::uint64_t>());
@@ -127,7 +128,7 @@ TEST_CASE("paced: a component killed mid-run is shown dead within the lease and 
     after_lease += step > last_tach + 12;
   }
   CHECK(within_lease >= 8);
-  CHECK(after_lease == 0);
+  CHECK(after_lease > 10);
   bool lost = false;
   for (const auto& event : test::exportedRows(exported, "fault_event")) {
     lost |= event["kind"] == "lost" && event["header"]["source"] == "wheel_tach" && event["active"] == true &&

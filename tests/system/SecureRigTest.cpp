@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 // The whole rig with DDS Security on (`flatsat run --secure DIR`, certificates
 // from deploy/security/make-certs.sh): it computes exactly what the open rig
-// computes, and a command reaches it only from a tool holding the operator's
+// computes, a stolen component key writes nothing but that component's
+// topics, and a command reaches it only from a tool holding the operator's
 // certificate.
 #include <catch2/catch.hpp>
 
@@ -20,15 +21,40 @@ const std::string kShortRun = " --set duration_orbits=null --set duration_s=60";
 
 }  // namespace
 
-TEST_CASE("a secured rig records exactly what the open rig records",
-          "[system][security]") {
+TEST_CASE("a secured rig records exactly what the open rig records, whatever a stolen component key tries",
+          "[system][security][trust]") {
   const test::Certificates certs;
+  test::exportTestDomain();
   const std::string scenario = std::string(FLATSAT_SCENARIO_DIR) + "/default.yaml";
   const auto open = test::runScenario(scenario, test::freshDir("open"), kShortRun);
-  const auto secured =
-      test::runScenario(scenario, test::freshDir("secured"), kShortRun + " --secure " + certs.dir.string());
-  CHECK(secured.summary["steps"] == open.summary["steps"]);
-  CHECK(secured.summary["recording_sha256"] == open.summary["recording_sha256"]);
+  const std::string out = test::freshDir("secured");
+  {
+    test::Background rig(test::kFlatsat + " run " + scenario + " -q --no-plots --out " + out + kShortRun +
+                             " --secure " + certs.dir.string(),
+                         out + ".log");
+    REQUIRE(test::waitForText(fs::path(out) / "logs" / "dynamics_server.log", "every component ready", 120, rig));
+    // The gyro's key in a hostile program: its grant lets it write neither a
+    // grant (a forged stop) nor another box's command.
+    const std::string stolen = "env FLATSAT_SECURE_DIR=" + certs.dir.string() + " " + test::kHostile;
+    const auto stop = test::runCommand(stolen + " forge-stop 5 gyro 2>&1");
+    INFO(stop.output);
+    CHECK(stop.exit_code == 3);
+    CHECK(stop.output.find("hostile: forge-stop refused: could not create a writer on flatsat/step_grant") !=
+          std::string::npos);
+    const auto dipole = test::runCommand(stolen + " huge-dipole 5 gyro 2>&1");
+    INFO(dipole.output);
+    CHECK(dipole.exit_code == 3);
+    CHECK(dipole.output.find("could not create a writer on flatsat/dipole_cmd") != std::string::npos);
+    INFO(test::readFile(out + ".log"));
+    REQUIRE(rig.wait(600) == 0);
+  }
+  const auto secured = test::readSummary(out);
+  CHECK(secured["completed"] == true);
+  CHECK(secured["intruders"] == 0);
+  CHECK(secured["steps"] == open.summary["steps"]);
+  CHECK(secured["recording_sha256"] == open.summary["recording_sha256"]);
+  fs::remove_all(out);
+  fs::remove(out + ".log");
 }
 
 TEST_CASE("a secured rig takes commands only from a tool with the operator's certificate",

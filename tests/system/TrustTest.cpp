@@ -8,6 +8,7 @@
 // unless every step ran and nobody but the rig wrote to it.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -25,7 +26,6 @@ using namespace flatsat;
 namespace {
 
 using test::kDefault;
-const std::string kHostile = std::string(FLATSAT_BIN_DIR) + "/hostile_participant";
 // Long enough (a few seconds of stepping) for the 1 s health heartbeats to
 // carry the counts into the recording.
 const std::string kShort = "--set duration_orbits=null --set duration_s=1200";
@@ -64,7 +64,7 @@ TEST_CASE("a rig attacked by forged stops, or held up by a stopped process, reco
   {  // forged stop grants from another participant are ignored, counted and named; the run is not trusted
     const std::string out = test::freshDir("forged-stop");
     {
-      test::Background hostile(kHostile + " forge-stop 300 rogue", out + "-hostile.log");
+      test::Background hostile(test::kHostile + " forge-stop 300 rogue", out + "-hostile.log");
       test::Background rig(test::kFlatsat + " run " + kDefault + " -q --no-plots --out " + out + " " + kShort,
                            out + ".log");
       const int code = rig.wait(600);
@@ -134,7 +134,7 @@ TEST_CASE("an intruder on a stepped topic stops a lockstep run at once, named, a
   waitUntilStepping(out, rig);
   std::this_thread::sleep_for(std::chrono::seconds(2));
   const auto started = std::chrono::steady_clock::now();
-  test::Background hostile(kHostile + " magnetometer 60 rogue", out + "-hostile.log");
+  test::Background hostile(test::kHostile + " magnetometer 60 rogue", out + "-hostile.log");
   const int code = rig.wait(120);
   const double stopped_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   const std::string log = test::readFile(out + ".log");
@@ -167,8 +167,8 @@ TEST_CASE("a faulty gyro's NaN burst and a command of 1e300 reach no estimate, c
     std::this_thread::sleep_for(std::chrono::seconds(5));
     // Posing as the rig's own gyro and unloading controller (a device gone bad,
     // not an intruder), over their emulators' ownership strength.
-    test::Background nan_gyro(kHostile + " nan-gyro 2 gyro", out + "-gyro.log");
-    test::Background huge_dipole(kHostile + " huge-dipole 2 unloading_controller", out + "-dipole.log");
+    test::Background nan_gyro(test::kHostile + " nan-gyro 2 gyro", out + "-gyro.log");
+    test::Background huge_dipole(test::kHostile + " huge-dipole 2 unloading_controller", out + "-dipole.log");
     CHECK(nan_gyro.wait(30) == 0);
     CHECK(huge_dipole.wait(30) == 0);
     INFO(test::readFile(out + "-gyro.log") + test::readFile(out + "-dipole.log"));
@@ -200,4 +200,47 @@ TEST_CASE("a faulty gyro's NaN burst and a command of 1e300 reach no estimate, c
   CHECK(test::exportedRows(exported, "attitude_estimate").back()["valid"] == true);
   fs::remove_all(out);
   for (const char* suffix : {".log", "-gyro.log", "-dipole.log"}) fs::remove(out + suffix);
+}
+
+TEST_CASE("paced, an intruder on one topic stalls no consumer of the others, and is named",
+          "[system][trust][paced]") {
+  test::exportTestDomain();
+  const std::string out = test::freshDir("paced-intruder");
+  {
+    test::Background rig(test::kFlatsat + " run " + kDefault + " -q --no-plots --out " + out +
+                             " --set mode=paced --set duration_orbits=null --set duration_s=25",
+                         out + ".log");
+    waitUntilStepping(out, rig);
+    std::this_thread::sleep_for(std::chrono::seconds(2));
+    // Over the emulator's ownership strength, on a topic the default
+    // estimator does not use: its magnetometer samples go nowhere.
+    test::Background hostile(test::kHostile + " magnetometer 8 rogue", out + "-hostile.log");
+    CHECK(hostile.wait(30) == 0);
+    const int code = rig.wait(120);
+    INFO(test::readFile(out + ".log"));
+    CHECK(code == 1);  // every step ran, but an intruder wrote to the rig
+  }
+  const auto s = test::readSummary(out);
+  INFO(s.dump(2));
+  CHECK(s["completed"] == true);
+  CHECK(s["intruders"].get<std::uint64_t>() >= 1);
+  REQUIRE(!s["intruder_writers"].empty());
+  CHECK(s["intruder_writers"][0]["topic"] == "flatsat/magnetometer");
+  const fs::path exported = fs::path(out) / "export";
+  REQUIRE(test::runCommand(test::kFlatsat + " export " + out + "/recording.sqlite --json -t attitude_estimate -o " +
+                           exported.string())
+              .exit_code == 0);
+  const auto rows = test::exportedRows(exported, "attitude_estimate");
+  REQUIRE(rows.size() > 100);
+  // The estimator went on through the intruder's 8 s (80 steps): no gap near
+  // that long, with room for a starved process's late steps.
+  std::uint64_t longest_gap = 0;
+  for (std::size_t i = 1; i < rows.size(); ++i) {
+    longest_gap = std::max(longest_gap, rows[i]["header"]["step"].get<std::uint64_t>() -
+                                            rows[i - 1]["header"]["step"].get<std::uint64_t>());
+  }
+  CHECK(longest_gap < 40);
+  fs::remove_all(out);
+  fs::remove(out + ".log");
+  fs::remove(out + "-hostile.log");
 }
