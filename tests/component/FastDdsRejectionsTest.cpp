@@ -57,6 +57,12 @@ class CapturedLog {
     fdds::Log::Flush();
     return sink_->lines();
   }
+  /// Every line so far, one a line: what a failed check shows.
+  std::string text() {
+    std::string all;
+    for (const auto& [level, line] : lines()) all += line + "\n";
+    return all;
+  }
   std::vector<Line> linesWith(const std::string& text) {
     std::vector<Line> found;
     for (auto& line : lines()) {
@@ -170,9 +176,7 @@ TEST_CASE("payloads larger than the type allows are counted in the bus, Fast DDS
   // Fast DDS logs one error per sample (and reader); spdlog got its 1st,
   // 10th and 100th, at error level, and the bus's own 1st, 10th and 100th drop.
   const auto lines = log.lines();
-  std::string all;
-  for (const auto& [level, text] : lines) all += text + "\n";
-  INFO(all);
+  INFO(log.text());
   const auto fastdds = log.linesWith("fastdds [RTPS_READER_HISTORY] Change payload size of");
   CHECK(fastdds.size() >= 1);
   CHECK(fastdds.size() <= 3);
@@ -198,9 +202,7 @@ TEST_CASE("an empty payload from another process is counted when Fast DDS report
   CHECK(waitFor([&] { return reader_bus.samplesDropped() >= kEmpty + kAfter; }, std::chrono::seconds(20)));
   CHECK(reader_bus.samplesDropped() == kEmpty + kAfter);
   const auto lines = log.lines();
-  std::string all;
-  for (const auto& [level, text] : lines) all += text + "\n";
-  INFO(all);
+  INFO(log.text());
   CHECK(log.linesWith("(reported lost by Fast DDS) (1 so far)").size() == 1);
   CHECK(lines.size() <= 4);  // the bus's 1st and 10th drop
 }
