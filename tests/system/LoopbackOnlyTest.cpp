@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 // The default participant profile keeps DDS on the machine: a packet
 // capture on every interface during a run sees no RTPS datagram that is not
-// loopback-to-loopback, and no multicast at all.
+// loopback-to-loopback, and no multicast at all, while a capture on loopback
+// alone sees the rig's RTPS traffic (the capture ran).
 #include <catch2/catch.hpp>
 
 #include <unistd.h>
@@ -10,6 +11,7 @@
 #include <fstream>
 #include <string>
 
+#include "tests/support/Rig.hpp"
 #include "tests/support/Run.hpp"
 #include "tests/support/TestDomain.hpp"
 
@@ -27,18 +29,31 @@ TEST_CASE("no RTPS datagram leaves loopback during a run", "[system][network]") 
   // RTPS datagrams start with the magic "RTPS" right after the UDP header.
   const std::string filter =
       "udp and udp[8:4] = 0x52545053 and not (src net 127.0.0.0/8 and dst net 127.0.0.0/8)";
+  // The control: the same capture on loopback alone sees the rig's own RTPS
+  // traffic (discovery goes over UDP even with shared memory), so a capture
+  // that never ran cannot pass for a clean one.
+  const std::string loopback_pcap = pcap + ".lo";
   const std::string script = out + ".sh";
   std::ofstream(script) << "tcpdump -i any -n -p -U -w " << pcap << " '" << filter
-                        << "' 2>/dev/null & dump=$!\nsleep 1\n"
+                        << "' 2>/dev/null & dump=$!\n"
+                        << "tcpdump -i lo -n -p -U -w " << loopback_pcap << " '" << test::kRtpsFilter
+                        << "' 2>/dev/null & dump_lo=$!\nsleep 1\n"
                         << FLATSAT_BIN_DIR << "/flatsat run " << FLATSAT_SCENARIO_DIR
                         << "/default.yaml -q --out " << out
                         << " --set duration_orbits=null --set duration_s=60\nrc=$?\nsleep 1\n"
-                        << "kill -INT $dump; wait $dump\necho rc=$rc\n"
-                        << "echo packets=$(tcpdump -r " << pcap << " -n 2>/dev/null | wc -l)\n";
+                        << "kill -INT $dump $dump_lo; wait $dump $dump_lo\necho rc=$rc\n"
+                        << "[ -f " << pcap << " ] && [ -f " << loopback_pcap << " ] && echo captured=yes\n"
+                        << "echo packets=$(tcpdump -r " << pcap << " -n 2>/dev/null | wc -l)\n"
+                        << "echo loopback_packets=$(tcpdump -r " << loopback_pcap << " -n 2>/dev/null | wc -l)\n";
   const auto result = test::runCommand("bash " + script);
   INFO(result.output);
   CHECK(result.output.find("rc=0") != std::string::npos);
-  CHECK(result.output.find("packets=0") != std::string::npos);
+  REQUIRE(result.output.find("captured=yes") != std::string::npos);
+  CHECK(result.output.find("packets=0\n") != std::string::npos);
+  const auto at = result.output.find("loopback_packets=");
+  REQUIRE(at != std::string::npos);
+  CHECK(std::stoul(result.output.substr(at + 17)) > 0);
+  fs::remove(loopback_pcap);
   fs::remove(pcap);
   fs::remove(script);
 }
