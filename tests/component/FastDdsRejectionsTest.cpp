@@ -10,7 +10,6 @@
 
 #include <atomic>
 #include <chrono>
-#include <functional>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -29,6 +28,7 @@
 #include "bus/Topics.hpp"
 #include "tests/support/RogueWriter.hpp"
 #include "tests/support/TestDomain.hpp"
+#include "tests/support/Within.hpp"
 
 namespace {
 
@@ -130,15 +130,6 @@ struct RogueAndReader {
 /// Intraprocess delivery as the process has it.
 struct AsConfigured {};
 
-bool waitFor(const std::function<bool()>& done, std::chrono::seconds timeout) {
-  const auto deadline = std::chrono::steady_clock::now() + timeout;
-  while (!done()) {
-    if (std::chrono::steady_clock::now() > deadline) return false;
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-  return true;
-}
-
 /// A valid CDR header and zeros, `extra` bytes past the type's maximum.
 test::Bytes oversized(std::uint32_t extra) {
   FaultCmdDef::PubSubType type;
@@ -153,25 +144,24 @@ TEST_CASE("payloads larger than the type allows are counted in the bus, Fast DDS
           "[component][dds][malformed]") {
   CapturedLog log;
   RogueAndReader<AsFromAnotherProcess> rig;
-  auto& [separate, domain, reader_bus, rogue_bus, taken, reader, rogue] = rig;
 
   constexpr std::uint64_t kSamples = 300;
   const std::uint64_t rejected_before = bus::fastDdsRejectedSamples();
   for (std::uint64_t i = 0; i < kSamples; ++i) {
-    rogue.write(oversized(1 + static_cast<std::uint32_t>(i % 50)));
+    rig.rogue.write(oversized(1 + static_cast<std::uint32_t>(i % 50)));
     // Rejected samples are acknowledged. Acknowledged in batches smaller than
     // the writer's history (64): none is replaced before the reader saw it
     // (Fast DDS would report that one lost, and the bus count it so).
-    if (i % 32 == 31) REQUIRE(rogue.waitForAcknowledgments(std::chrono::seconds(10)));
+    if (i % 32 == 31) REQUIRE(rig.rogue.waitForAcknowledgments(std::chrono::seconds(10)));
   }
-  REQUIRE(rogue.waitForAcknowledgments(std::chrono::seconds(10)));
+  REQUIRE(rig.rogue.waitForAcknowledgments(std::chrono::seconds(10)));
   fdds::Log::Flush();  // the count happens on Fast DDS's log thread
-  CHECK(waitFor([&] { return reader_bus.samplesDropped() >= kSamples; }, std::chrono::seconds(10)));
+  CHECK(test::within(10, [&] { return rig.reader_bus.samplesDropped() >= kSamples; }));
 
-  CHECK(reader_bus.samplesDropped() == kSamples);
+  CHECK(rig.reader_bus.samplesDropped() == kSamples);
   CHECK(bus::fastDdsRejectedSamples() - rejected_before == kSamples);
-  CHECK(rogue_bus.samplesDropped() == 0);
-  CHECK(taken == 0);
+  CHECK(rig.rogue_bus.samplesDropped() == 0);
+  CHECK(rig.taken == 0);
 
   // Fast DDS logs one error per sample (and reader); spdlog got its 1st,
   // 10th and 100th, at error level, and the bus's own 1st, 10th and 100th drop.
@@ -190,17 +180,16 @@ TEST_CASE("an empty payload from another process is counted when Fast DDS report
           "[component][dds][malformed]") {
   CapturedLog log;
   RogueAndReader<AsFromAnotherProcess> rig;
-  auto& [separate, domain, reader_bus, rogue_bus, taken, reader, rogue] = rig;
 
   // The empty samples never arrive (Fast DDS drops their submessage), and the
   // reader waits for them, holding back what follows, until the writer's
   // keep-last history (64) has passed them; Fast DDS then reports them lost.
   constexpr std::uint64_t kEmpty = 5;
   constexpr std::uint64_t kAfter = 64;
-  for (std::uint64_t i = 0; i < kEmpty; ++i) rogue.write({});
-  for (std::uint64_t i = 0; i < kAfter; ++i) rogue.write(test::malformedPayloads()[0]);
-  CHECK(waitFor([&] { return reader_bus.samplesDropped() >= kEmpty + kAfter; }, std::chrono::seconds(20)));
-  CHECK(reader_bus.samplesDropped() == kEmpty + kAfter);
+  for (std::uint64_t i = 0; i < kEmpty; ++i) rig.rogue.write({});
+  for (std::uint64_t i = 0; i < kAfter; ++i) rig.rogue.write(test::malformedPayloads()[0]);
+  CHECK(test::within(20, [&] { return rig.reader_bus.samplesDropped() >= kEmpty + kAfter; }));
+  CHECK(rig.reader_bus.samplesDropped() == kEmpty + kAfter);
   const auto lines = log.lines();
   INFO(log.text());
   CHECK(log.linesWith("(reported lost by Fast DDS) (1 so far)").size() == 1);
@@ -210,11 +199,10 @@ TEST_CASE("an empty payload from another process is counted when Fast DDS report
 TEST_CASE("an empty payload from this process reaches the bus's topic type, which counts it",
           "[component][dds][malformed]") {
   RogueAndReader<AsConfigured> rig;
-  auto& [separate, domain, reader_bus, rogue_bus, taken, reader, rogue] = rig;
-  for (int i = 0; i < 5; ++i) rogue.write({});
-  REQUIRE(rogue.waitForAcknowledgments(std::chrono::seconds(5)));
-  CHECK(waitFor([&] { return reader_bus.samplesDropped() >= 5; }, std::chrono::seconds(5)));
-  CHECK(reader_bus.samplesDropped() == 5);
+  for (int i = 0; i < 5; ++i) rig.rogue.write({});
+  REQUIRE(rig.rogue.waitForAcknowledgments(std::chrono::seconds(5)));
+  CHECK(test::within(5, [&] { return rig.reader_bus.samplesDropped() >= 5; }));
+  CHECK(rig.reader_bus.samplesDropped() == 5);
 }
 
 TEST_CASE("Fast DDS's log entries reach spdlog at their level, each message at its 1st, 10th, 100th, ... repeat",

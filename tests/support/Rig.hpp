@@ -37,6 +37,11 @@ struct RigRun {
   nlohmann::json summary;
 };
 
+/// The command line of a quiet run of `scenario` into `out`, no figures, with extra flags.
+inline std::string runLine(const std::string& scenario, const std::string& out, const std::string& extra = "") {
+  return kFlatsat + " run " + scenario + " -q --no-plots --out " + out + " " + extra;
+}
+
 /// Runs the scenario to its end into `out` with extra flags; requires success,
 /// reads the summary and removes the run directory (kept when the run failed,
 /// or when `keep`).
@@ -44,7 +49,7 @@ inline RigRun runScenario(const std::string& scenario, const std::string& out,
                           const std::string& extra = "", bool keep = false) {
   exportTestDomain();
   RigRun run;
-  run.command = runCommand(kFlatsat + " run " + scenario + " -q --no-plots --out " + out + " " + extra);
+  run.command = runCommand(runLine(scenario, out, extra));
   INFO(run.command.output);
   REQUIRE(run.command.exit_code == 0);
   std::ifstream(std::filesystem::path(out) / "summary.json") >> run.summary;

@@ -41,18 +41,14 @@ TEST_CASE("no RTPS datagram leaves loopback during a run", "[system][network]") 
                         << FLATSAT_BIN_DIR << "/flatsat run " << FLATSAT_SCENARIO_DIR
                         << "/default.yaml -q --out " << out
                         << " --set duration_orbits=null --set duration_s=60\nrc=$?\nsleep 1\n"
-                        << "kill -INT $dump $dump_lo; wait $dump $dump_lo\necho rc=$rc\n"
-                        << "[ -f " << pcap << " ] && [ -f " << loopback_pcap << " ] && echo captured=yes\n"
-                        << "echo packets=$(tcpdump -r " << pcap << " -n 2>/dev/null | wc -l)\n"
-                        << "echo loopback_packets=$(tcpdump -r " << loopback_pcap << " -n 2>/dev/null | wc -l)\n";
+                        << "kill -INT $dump $dump_lo; wait $dump $dump_lo\necho rc=$rc\n";
   const auto result = test::runCommand("bash " + script);
   INFO(result.output);
   CHECK(result.output.find("rc=0") != std::string::npos);
-  REQUIRE(result.output.find("captured=yes") != std::string::npos);
-  CHECK(result.output.find("packets=0\n") != std::string::npos);
-  const auto at = result.output.find("loopback_packets=");
-  REQUIRE(at != std::string::npos);
-  CHECK(std::stoul(result.output.substr(at + 17)) > 0);
+  REQUIRE(fs::exists(pcap));
+  REQUIRE(fs::exists(loopback_pcap));
+  CHECK(test::capturedPackets(pcap, "") == 0);
+  CHECK(test::capturedPackets(loopback_pcap, "") > 0);
   fs::remove(loopback_pcap);
   fs::remove(pcap);
   fs::remove(script);

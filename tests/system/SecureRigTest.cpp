@@ -29,8 +29,7 @@ TEST_CASE("a secured rig records exactly what the open rig records, whatever a s
   const auto open = test::runScenario(scenario, test::freshDir("open"), kShortRun);
   const std::string out = test::freshDir("secured");
   {
-    test::Background rig(test::kFlatsat + " run " + scenario + " -q --no-plots --out " + out + kShortRun +
-                             " --secure " + certs.dir.string(),
+    test::Background rig(test::runLine(scenario, out, kShortRun + " --secure " + certs.dir.string()),
                          out + ".log");
     REQUIRE(test::waitForText(fs::path(out) / "logs" / "dynamics_server.log", "every component ready", 120, rig));
     // The gyro's key in a hostile program: its grant lets it write neither a

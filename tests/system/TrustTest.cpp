@@ -65,7 +65,7 @@ TEST_CASE("a rig attacked by forged stops, or held up by a stopped process, reco
     const std::string out = test::freshDir("forged-stop");
     {
       test::Background hostile(test::kHostile + " forge-stop 300 rogue", out + "-hostile.log");
-      test::Background rig(test::kFlatsat + " run " + kDefault + " -q --no-plots --out " + out + " " + kShort,
+      test::Background rig(test::runLine(kDefault, out, kShort),
                            out + ".log");
       const int code = rig.wait(600);
       INFO(test::readFile(out + ".log"));
@@ -91,8 +91,7 @@ TEST_CASE("a rig attacked by forged stops, or held up by a stopped process, reco
     const std::string out = test::freshDir("stopped");
     // UDP only: Fast DDS aborts a peer that waits over 1 s on a shared-memory
     // lock a stopped process holds (bus/Bus.hpp, BusNetwork::shared_memory).
-    test::Background rig("env FLATSAT_SHARED_MEMORY=0 " + test::kFlatsat + " run " + kDefault + " -q --no-plots --out " +
-                             out + " " + kShort,
+    test::Background rig("env FLATSAT_SHARED_MEMORY=0 " + test::runLine(kDefault, out, kShort),
                          out + ".log");
     waitUntilStepping(out, rig);
     const auto pid = test::runCommand("pgrep -n -f '[f]latsat-sun_sensor --scenario " + out + "/'");
@@ -128,8 +127,7 @@ TEST_CASE("an intruder on a stepped topic stops a lockstep run at once, named, a
           "[system][trust]") {
   test::exportTestDomain();
   const std::string out = test::freshDir("intruder");
-  test::Background rig(test::kFlatsat + " run " + kDefault + " -q --no-plots --out " + out +
-                           " --set duration_orbits=null --set duration_s=100000",
+  test::Background rig(test::runLine(kDefault, out, "--set duration_orbits=null --set duration_s=100000"),
                        out + ".log");
   waitUntilStepping(out, rig);
   std::this_thread::sleep_for(std::chrono::seconds(2));
@@ -160,8 +158,7 @@ TEST_CASE("a faulty gyro's NaN burst and a command of 1e300 reach no estimate, c
   test::exportTestDomain();
   const std::string out = test::freshDir("nan-burst");
   {
-    test::Background rig(test::kFlatsat + " run " + kDefault + " -q --no-plots --out " + out +
-                             " --set mode=paced --set duration_orbits=null --set duration_s=25",
+    test::Background rig(test::runLine(kDefault, out, "--set mode=paced --set duration_orbits=null --set duration_s=25"),
                          out + ".log");
     waitUntilStepping(out, rig);
     std::this_thread::sleep_for(std::chrono::seconds(5));
@@ -207,8 +204,7 @@ TEST_CASE("paced, an intruder on one topic stalls no consumer of the others, and
   test::exportTestDomain();
   const std::string out = test::freshDir("paced-intruder");
   {
-    test::Background rig(test::kFlatsat + " run " + kDefault + " -q --no-plots --out " + out +
-                             " --set mode=paced --set duration_orbits=null --set duration_s=25",
+    test::Background rig(test::runLine(kDefault, out, "--set mode=paced --set duration_orbits=null --set duration_s=25"),
                          out + ".log");
     waitUntilStepping(out, rig);
     std::this_thread::sleep_for(std::chrono::seconds(2));
