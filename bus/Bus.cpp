@@ -69,7 +69,7 @@ void addInitialPeers(dds::DomainParticipantQos& qos, std::uint32_t domain,
 /// data-sharing reader sends for every sample it takes, heartbeats, the
 /// samples of peers without data sharing) goes through shared memory, not
 /// UDP loopback. In lockstep that was 80 datagrams a step, and the rig's
-/// system time fell by 30 % without them (issue 10, tcpdump on lo, time).
+/// system time fell by 30 % without them (tcpdump on lo, time).
 /// Paced rigs and the tools keep UDP: processes are killed and stopped there
 /// on purpose, and a peer stopped while it holds a shared-memory port's lock
 /// wedges the others (Fast DDS 2.9.1's 1 s interprocess lock timeout); a

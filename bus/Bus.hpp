@@ -133,23 +133,10 @@ class Bus : private eprosima::fastdds::dds::DomainParticipantListener {
   eprosima::fastdds::dds::Topic& topic(const std::string& name,
                                        eprosima::fastdds::dds::TopicDataType* type);
 
-  /// Every reader of the participant is made and deleted here. Fast DDS 2.9.1
-  /// walks the participant's list of readers (WLP::sub_liveliness_changed,
-  /// without a lock) each time a writer's liveliness changes for a reader
-  /// that watches it (a finite lease: readerQos), and grows or shifts that
-  /// list when a reader is made or deleted (WLP::add_local_reader,
-  /// remove_local_reader). A reader made during such a walk left it on freed
-  /// memory: a SIGSEGV in a dynamics server in CI, and in a recorder in 1 of
-  /// about 100 runs of a rig here. So the watchers have a subscriber of their
-  /// own, moved for the making or deleting to a partition no writer may use.
-  /// Unmatching a watcher takes the lock of the liveliness manager that a
-  /// walk on a receiving thread holds (LivelinessManager::remove_writer, its
-  /// collection lock), so the reader is made after any such walk, and with
-  /// no writer to track no new walk begins. Left open: a walk the event
-  /// thread had begun for a lease that just ran out (a writer lost at that
-  /// instant) takes no such lock. The watchers match again afterwards, and
-  /// their transient-local writers send them their history again, as to a
-  /// late joiner (bus::Input drops copies of samples it holds).
+  /// Every reader of the participant is made and deleted here. Watchers (readers of a
+  /// finite lease) have a subscriber of their own, unmatched while a reader is made or
+  /// deleted: Fast DDS 2.9.1 walks its readers unlocked on each liveliness change, and a
+  /// reader made mid-walk leaves the walk on freed memory.
   /// Throws std::runtime_error naming the participant and topic when Fast DDS refuses the reader.
   eprosima::fastdds::dds::DataReader* createReader(eprosima::fastdds::dds::Topic& topic,
                                                    const eprosima::fastdds::dds::DataReaderQos& qos,

@@ -7,7 +7,7 @@
 
 namespace flatsat::bus {
 
-/// What a component must know after a restart (issue "Restart"): its state
+/// What a component must know after a restart: its state
 /// (the estimator's estimate and covariance, the sequencer's correction count;
 /// null for a component that keeps none) and the newest step it began to
 /// publish, whose grant it must never step again.

@@ -153,7 +153,7 @@ bool Component::handle(const Grant& grant, bool inputs_in) {
   reachedStep(ctx.step);
   // Lockstep looks at the clock every 16th step only: a heartbeat a few
   // steps late tells the same, and a composed rig steps faster than the
-  // clock reads it took (issue 10). Paced steps follow the clock anyway.
+  // clock reads it took. Paced steps follow the clock anyway.
   if ((paced() || ++lockstep_grants_ % 16 == 0) && std::chrono::steady_clock::now() > next_health_) {
     publishHealth(msg::ComponentState::RUNNING, steps_done_, status_);
     next_health_ += kHealthPeriod;

@@ -59,7 +59,7 @@ class Component : public Node {
   /// lock (it must not publish, nor wait on anything but a short lock of its
   /// own); set it before the component starts. The recorder stores them
   /// from the grants this component steps by, without a second reader (a
-  /// delivery and an acknowledgement a step, issue 10).
+  /// delivery and an acknowledgement a step).
   void observeGrants(std::function<void(const msg::StepGrant&)> observer);
 
   /// What the RUNNING health says from now on ("stepping" until set): a
@@ -69,7 +69,7 @@ class Component : public Node {
  private:
   /// What a pending grant says. A plain struct: queuing and taking the
   /// generated message cost a default construction, a copy and an assignment,
-  /// all out of line, per component and step (2 % of a composed step, issue 10).
+  /// all out of line, per component and step (2 % of a composed step).
   struct Grant {
     std::uint64_t step = 0;
     std::int64_t sim_time_ns = 0;  ///< [ns]

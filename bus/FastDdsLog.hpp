@@ -2,7 +2,7 @@
 #pragma once
 // Fast DDS's own log, routed through spdlog with its repeats limited, and the
 // samples Fast DDS drops before the bus's GuardedType sees them counted in
-// the bus's samples_dropped (issue 30, point 6). Header only; bus/Bus.cpp
+// the bus's samples_dropped. Header only; bus/Bus.cpp
 // calls attachFastDdsLog once its participant and subscribers exist, gives
 // every reader fastDdsReaderMask(), and calls detachFastDdsLog first thing
 // in ~Bus.

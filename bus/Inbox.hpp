@@ -11,7 +11,7 @@ namespace flatsat::bus {
 /// their acknowledgements): pushed from any thread, taken whole at a step.
 /// The step looks every step and finds it empty nearly always; that look
 /// takes no lock (the lock pairs of those empty looks were about a thousand
-/// instructions a composed step, callgrind, issue 10).
+/// instructions a composed step, callgrind).
 template <class T>
 class Inbox {
  public:

@@ -135,8 +135,8 @@ class LocalHub {
 
   /// Every reader of the rig exists (its nodes started): from now on a write
   /// copies its sample to the readers only, not also into a writer's history
-  /// for late readers, which was a copy of every sample of every step (issue
-  /// 10). A reader created after this throws std::logic_error.
+  /// for late readers, which was a copy of every sample of every step. A
+  /// reader created after this throws std::logic_error.
   void seal() {
     sealed_ = true;
     for (auto& [name, channel] : channels_) channel->seal();

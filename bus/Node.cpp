@@ -87,7 +87,7 @@ void Node::waitForProducers() {
 void Node::notify() {
   // In process (a composed rig) the samples arrive on the one thread that
   // would wait: nobody can be waiting, and the lock and wake-up were a fifth
-  // of the bookkeeping of a composed step (issue 10, callgrind).
+  // of the bookkeeping of a composed step (callgrind).
   if (inProcess()) return;
   // Taking the lock orders the change before a waiter's check, so no
   // wake-up is lost between its check and its wait.
@@ -158,7 +158,7 @@ void Node::dropInputsAfter(std::uint64_t k) {
   // steps every step, and the next sample lands in the empty slot. Dropped
   // before k only, the sample of k stayed until the one of k + 1 came and was
   // then moved down behind it: a kilobyte truth, five times a step
-  // (callgrind, issue 10).
+  // (callgrind).
   const std::uint64_t unused_before = paced() ? k : k + 1;
   for (auto& input : inputs_) input->dropBefore(unused_before);
 }

@@ -202,7 +202,7 @@ class Input final : public InputBase {
   /// A tap in a composed rig holds no sample: every write reaches it inside
   /// the write, so there is nothing to wait for, and holding a copy of every
   /// sample for a wait that never comes cost 1.5k instructions of a 47k
-  /// composed step (callgrind, issue 10). It still drops a copy (a bus
+  /// composed step (callgrind). It still drops a copy (a bus
   /// duplicate fault): what it passed on counts as consumed.
   const bool passes_through_;
   std::uint64_t hold_steps_ = 1;       ///< paced: steps a last sample is held for (the lease)
@@ -329,7 +329,7 @@ class Node {
   /// For one lockstep wait, under mutex_: what must hold before waking the
   /// waiter does it any good. A wake-up per arriving sample, each finding
   /// the step still incomplete and sleeping again, made the kernel's task
-  /// switches a fifth of a lockstep rig's CPU (issue 10, perf). The waits
+  /// switches a fifth of a lockstep rig's CPU (perf). The waits
   /// still poll, so a condition that misses a case costs a poll, not a hang.
   class WakeWhen {
    public:
@@ -403,7 +403,7 @@ class Node {
   /// mutex_ for bookkeeping that samples reach on middleware threads; in
   /// process (a composed rig) they arrive on the stepping thread itself, and
   /// the lock is left untaken: a lock pair costs an atomic each way, and the
-  /// grants and StepDones took a few dozen a step (issue 10).
+  /// grants and StepDones took a few dozen a step.
   std::unique_lock<std::mutex> lockIfThreaded() {
     return inProcess() ? std::unique_lock(mutex_, std::defer_lock) : std::unique_lock(mutex_);
   }

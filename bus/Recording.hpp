@@ -25,7 +25,7 @@ namespace flatsat::bus {
 /// Created for writing, it inserts on a thread of its own: insert() only
 /// queues the row, and each commit hands the queued rows to that thread.
 /// SQLite's insert was the recorder's whole cost and a tenth of a composed
-/// step (issue 10, callgrind); the writer takes it to the other core. The
+/// step (callgrind); the writer takes it to the other core. The
 /// connection belongs to the writer while it holds batches and otherwise to
 /// the caller; every other call first waits for the writer and then stores
 /// the queued rows itself, so reads see every insert, in arrival order.

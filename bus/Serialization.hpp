@@ -18,7 +18,7 @@ template <class Def>
 void serializeInto(const typename Def::Type& sample, std::vector<std::uint8_t>& bytes) {
   // One type object and payload per thread: constructing them for each
   // sample (the type allocates and sizes itself, the payload allocates) was
-  // most of what a recorded sample cost the step thread (callgrind, issue 10).
+  // most of what a recorded sample cost the step thread (callgrind).
   thread_local typename Def::PubSubType type;
   thread_local eprosima::fastrtps::rtps::SerializedPayload_t payload;
   auto* data = const_cast<typename Def::Type*>(&sample);

@@ -30,7 +30,7 @@ std::string text(const std::array<char, N>& field) {
 
 /// Stamps a sample's header, every field of it, in place: a header built
 /// apart and moved in cost a construction and an assignment, both out of line
-/// in the generated code, per sample (issue 10, callgrind).
+/// in the generated code, per sample (callgrind).
 inline void stamp(msg::SampleHeader& header, const StepContext& ctx, std::string_view source) {
   header.step(ctx.step);
   header.sim_time_ns(ctx.sim_time_ns);

@@ -202,8 +202,8 @@ void TimeMaster::waitForTick(std::chrono::steady_clock::time_point tick) {
   std::unique_lock lock(mutex_);
   // Sleep to kTickSpin before the tick, then spin: a sleeping thread wakes
   // up to the timer slack plus the scheduler's latency late, which on a
-  // loaded 2-vCPU guest was 2 ms at the 99th percentile (issue 10 asks for
-  // 200 µs). The spin costs kTickSpin of one core per period.
+  // loaded 2-vCPU guest was 2 ms at the 99th percentile (the paced rig's
+  // target is 200 µs). The spin costs kTickSpin of one core per period.
   while (std::chrono::steady_clock::now() < tick - kTickSpin) {
     if (interrupted()) throw NodeFailure(name() + ": interrupted");
     changed_.wait_until(lock, tick - kTickSpin);

@@ -94,7 +94,7 @@ class TimeMaster : public Node {
   /// Each component the master waits for and the newest step it reported
   /// done. Lockstep grants k+1 only after all of k, and a component steps in
   /// order, so "done with k" is "newest done >= k": a flat table scanned by
-  /// name, with no allocation per StepDone (issue 10's composed profile).
+  /// name, with no allocation per StepDone (a composed rig's profile).
   struct Awaited {
     std::string component;
     std::uint32_t divider = 1;
@@ -113,7 +113,7 @@ class TimeMaster : public Node {
   /// QosTuning::best_effort_readers) and are stored by step; the recorder commits only
   /// whole steps (Recording::commitInBackgroundThrough). Its StepDone was one
   /// more hop at the end of every step's chain, and its work on a step can
-  /// now overlap the next step's (issue 10). Step 0 and the final step are
+  /// now overlap the next step's. Step 0 and the final step are
   /// waited for in full: a sample a late-matched reader missed shows at
   /// step 0, where the master's resend brings it (kResendAfter).
   static constexpr std::uint64_t kSinkTrailSteps = 8;

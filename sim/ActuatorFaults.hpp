@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 #pragma once
-// Actuator faults (issue 4; architecture, "Faults"): what the plant does with
+// Actuator faults (architecture, "Faults"): what the plant does with
 // a command when an actuator misbehaves, timed in simulated time. The kinds
 // are the actuator failure modes of FDIR practice: loss of a unit, a frozen
 // output, loss of effectiveness (Zhang & Jiang, "Bibliographical review on

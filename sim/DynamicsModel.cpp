@@ -183,7 +183,7 @@ Eigen::Vector3d DynamicsModel::Torques::total_B_Nm() const {
 
 DynamicsModel::Torques DynamicsModel::attitudeTorquesAt(const Environment& env, const Eigen::Quaterniond& q_NB) const {
   // Four vectors turned by one attitude: as a matrix once, not a quaternion
-  // product each (issue 10, callgrind: a fifth of the cost of a call).
+  // product each (callgrind: a fifth of the cost of a call).
   const Eigen::Matrix3d R_BN = q_NB.toRotationMatrix().transpose();
   Torques torques;
   torques.b_B_T = R_BN * env.b_N_T;

@@ -132,7 +132,7 @@ class DynamicsModel {
   Environment env_;  // at t_
   /// attitudeTorquesAt(env_, q_NB) of the truth. The next step's first RK4
   /// stage is at the same attitude and environment: it takes them instead of
-  /// summing the panels again, one evaluation of the five a step (issue 10).
+  /// summing the panels again, one evaluation of the five a step.
   struct AttitudeTorques {
     Eigen::Quaterniond q_NB;
     Torques torques;

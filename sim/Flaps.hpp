@@ -44,17 +44,14 @@ struct FlapsParams {
 ///  - θi turns plate i about its wing's outward axis (+y for the +y wing, −y for
 ///    the −y wing), from the neutral position in the x–y plane (edge-on to the
 ///    wind). The plate normal is then (±sin θi, 0, cos θi) with + on the +y wing.
-/// With specular reflection (F dt = dm · 2V sin θ along the normal, mass flow
-/// ρ A_p V |sin θ|) and wind V along +x each plate gives the lift
+/// With specular reflection and wind V along +x each plate gives the lift
 /// 2ρA_pV² sin θ cos θ |sin θ| along z and the drag 2ρA_pV² |sin θ|³ along x,
 /// hence about the centre of mass
 ///   τ = 2ρ A_p V² l · (c_ax, 0, c_az),
-///   c_ax = Σ ½ sin 2θi |sin θi|,   c_az = Σ (−1)^i |sin θi|³.
-/// The seed writes C = K c with K = 2ρSV²l; with its plate area S/2 the physical
-/// factor is K/2 = 2ρA_pV²l, and its garbled "sin2θi2|sinθi|" reads sin 2θi / 2:
-/// that ½ puts roll and yaw on one scale and is what its inversion assumes
-/// (|sin θ1|² + |sin θ2|² = |c_ax| to first order in θ). algorithms.md's
-/// c_ax = Σ sin 2θi |sin θi| is twice the physical roll shape.
+///   c_ax = Σ ½ sin 2θi |sin θi|,   c_az = Σ (−1)^i |sin θi|³
+/// (algorithms.md's c_ax = Σ sin 2θi |sin θi| is twice this physical roll shape).
+/// Derivation, and how the seed's factors read: docs/magnetic_control.md,
+/// "The flaps' torque, derived".
 class Flaps {
  public:
   /// Params must be valid and fitted.

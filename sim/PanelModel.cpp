@@ -59,7 +59,7 @@ namespace {
 
 // The per-panel parts, with what all panels share (flow speed and direction,
 // radiation pressure) worked out once by the callers: the panel sums run five
-// times a rig step (each RK4 stage and the truth), issue 10.
+// times a rig step (each RK4 stage and the truth).
 ForceTorque aerodynamicOnPanel(const Panel& panel, double density_kg_m3, double speed, const Eigen::Vector3d& w_unit,
                                const Eigen::Vector3d& sun_B_unit) {
   const Eigen::Vector3d normal = panel.normalFacing(sun_B_unit);

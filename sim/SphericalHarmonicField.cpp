@@ -89,7 +89,7 @@ Eigen::Vector3d SphericalHarmonicField::synthesize(const Table& g, const Table& 
   // The recursions run degree by degree, every order of a degree from the two
   // degrees before: the orders are independent of each other, so the
   // processor overlaps them (order by order, each was a chain of dependent
-  // multiplications, and the synthesis waited on it; issue 10). Each Qₙᵐ is
+  // multiplications, and the synthesis waited on it). Each Qₙᵐ is
   // summed into the field as it is made, and what every order of a degree
   // shares (n cos θ, sin θ in Z′) is taken out of the sums.
   std::array<double, kMaxDegree + 1> p0;  // Pₙ⁰

@@ -8,7 +8,7 @@
 
 namespace flatsat::tools {
 
-/// The judges of detumbling and spin capture (issue 6): thresholds and the
+/// The judges of detumbling and spin capture: thresholds and the
 /// spin the controller was asked for.
 struct MagneticMetricsParams {
   double detumbled_rate_rad_s = 0.2 * 3.14159265358979323846 / 180.0;  // [rad/s] |ω| below: detumbled

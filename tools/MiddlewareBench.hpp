@@ -8,7 +8,7 @@ class App;
 
 namespace flatsat::tools {
 
-/// Prints the middleware figures of `flatsat bench` (issue 10), measured with
+/// Prints the middleware figures of `flatsat bench`, measured with
 /// the rig's own bus (loopback profile: UDP on 127.0.0.1 + SHM), its registry
 /// topics and QoS, between separate flatsat processes:
 ///   hop_us, hop_us_p99  one-way latency of a TruthState sample, RTT/2 of a

@@ -29,7 +29,7 @@ class Progress {
     /// The time master's health (kHealthPeriod): a lockstep rig of processes. A
     /// reader of every grant was one more delivery a step, and with it a
     /// wake-up of this process and an acknowledgement: 3 % of the rig's CPU
-    /// (perf, issue 10). Its last health (STOPPED, every step done) times the end.
+    /// (perf). Its last health (STOPPED, every step done) times the end.
     kMasterHealth,
   };
   Progress(bus::Bus& bus, bool show, bool keep_arrivals = false, Follow follow = Follow::kGrants)

@@ -7,7 +7,7 @@
 
 namespace flatsat::tools {
 
-/// Detumble and spin-capture keys of summary.json (issue 6), from the recorded
+/// Detumble and spin-capture keys of summary.json, from the recorded
 /// truth, when the unloading controller starts in detumble or spin_capture:
 /// rate_deg_s_final, time_to_detumble_s (null: not below 0.2 deg/s at the end),
 /// coil_duty, and with spin capture spin_axis_error_deg, spin_rate_error_pct,

@@ -7,7 +7,7 @@
 
 namespace flatsat::tools {
 
-/// Seed S2 keys of summary.json (issue 6), when the unloading controller splits its
+/// Seed S2 keys of summary.json, when the unloading controller splits its
 /// torque with the flaps (`aero:`), from flatsat/flap_cmd and the truth at the same step:
 ///  - aero_torque_ratio: Σ|flap torque (plant)| / Σ|C·B̂|, C the torque the law asked for and
 ///    B the plant's field: the flaps' torque against the component of C along B. No flap

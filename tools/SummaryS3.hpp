@@ -7,7 +7,7 @@
 
 namespace flatsat::tools {
 
-/// Seed S3 keys of summary.json (issue 8), when a station_keeping planner is in
+/// Seed S3 keys of summary.json, when a station_keeping planner is in
 /// the rig, from the truth of every recorded step:
 ///  - longitude_dev_deg_max: the longitude's largest distance from the station;
 ///  - inclination_deg_max: the largest osculating inclination (r × v);

@@ -366,7 +366,7 @@ std::string defaultScenario() {
 }
 
 /// The rig paced at 100 Hz for paced_s of wall time, recorder on: how evenly
-/// its ticks come (issue 10: p99 lateness <= 200 µs, no missed step).
+/// its ticks come (the target: p99 lateness <= 200 µs, no missed step).
 int pacedBench(const std::string& scenario, double paced_s) {
   RunOptions o;
   o.scenario = scenario;
@@ -392,7 +392,7 @@ int pacedBench(const std::string& scenario, double paced_s) {
 
 /// N = 1, 4, 16 spacecraft of the composed run `composed` side by side in
 /// one process (spacecraft_count): the cost of a spacecraft-step at each N,
-/// and how it grew from N = 1 (issue 10: at most linearly, so <= 1).
+/// and how it grew from N = 1 (the target: at most linearly, so <= 1).
 int fleetBench(RunOptions composed, bool quick) {
   // Long enough that each spacecraft's first steps (its recording's first
   // pages, its models' first calls) weigh little against the rest.
@@ -432,7 +432,7 @@ std::string joined(const std::vector<double>& values) {
 /// the rig's lockstep run in turn, and the composed run. On this machine kind
 /// either moved by a quarter from one minute to the next (780 and 1,046
 /// steps/s, the same rig a minute apart), so the figures are medians and the
-/// fraction issue 10 asks for is the medians' ratio.
+/// fraction lockstep_fraction_of_limit is the medians' ratio.
 constexpr int kRunsPerFigure = 3;
 
 /// [s] simulated time of bench's composed resume figure: 20,000 steps, about a
@@ -442,7 +442,7 @@ constexpr double kComposedResumeSeconds = 2000.0;
 /// `--resume` of a run that completed: K is its last step, so the resumed
 /// run is all check phase (every sample compared with the recording, none
 /// stored). Its steps/s against the recording run's is how fast a resume
-/// re-checks (issue 30, point 8: at least half as fast). Every step is
+/// re-checks (the target: at least half as fast). Every step is
 /// recorded: decimated, a resume checks only the recorded steps' samples.
 /// `o` runs the scenario as processes or composed; its figures are printed
 /// under `prefix`, each a median of pairs run one after the other.
@@ -536,12 +536,12 @@ int bench(const std::string& scenario, double duration_s, bool quick) {
   std::printf("steps=%llu\n", summary["steps"].get<unsigned long long>());
   std::printf("lockstep_steps_per_s=%.1f\n", lockstep);
   std::printf("lockstep_steps_per_s_runs=%s\n", joined(locksteps).c_str());
-  // Issue 10: the rig should reach >= 0.75 of the bare graph's rate.
+  // The target: the rig should reach >= 0.75 of the bare graph's rate.
   std::printf("lockstep_fraction_of_limit=%.3f\n", lockstep / limit);
   std::printf("speed_factor=%.1f\n", lockstep * loaded.step_s);
   std::printf("startup_ms=%.0f\n", tools::quantile(startups, 0.5));
   // The same scenario composed into one process, its recording decimated to
-  // 1 Hz as 42 writes its output files (issue 10's composed figure).
+  // 1 Hz as 42 writes its output files (the composed figure).
   if (!tools::composedProblems(loaded).empty()) {
     std::cerr << "flatsat bench: " << scenario << " cannot run composed; no composed figures\n";
     if (const int rc = resumeFigures(scenario, duration_s, quick); rc != 0) return rc;

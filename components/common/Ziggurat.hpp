@@ -21,7 +21,7 @@ namespace flatsat {
 /// correlation of the 32-bit original (Leong, Zhang, Lee, Luk & Villasenor,
 /// J. Stat. Softw. 12(7), 2005). std::normal_distribution's polar method
 /// took a logarithm, a square root and a division per pair and cost a
-/// rig step 1.9k instructions for its fifteen draws (callgrind, issue 10).
+/// rig step 1.9k instructions for its fifteen draws (callgrind).
 class Ziggurat {
  public:
   static constexpr int kLayers = 256;

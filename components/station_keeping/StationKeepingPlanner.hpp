@@ -81,14 +81,10 @@ struct StationKeepingPlan {
 /// error, "approximately 90° RA" in the seed's words.
 ///
 /// A firing the table gives to MD is flown as two halves at its centre ±
-/// dump_arc_rad. A gimbal turns a thrust line through the centre of mass only
-/// within the plane normal to that line, and both firings of 22/28 at exactly
-/// 90° and 270° have one inertial thrust line (0.59 Y_N + 0.81 Z_N at a cant
-/// of 36°), so no gimbal angle of theirs dumps the momentum along it: mostly
-/// the orbit normal, where a body-fixed torque piles up. The halves' lines
-/// part by about 2 sin θ sin δ (θ the cant), so the two halves together reach every
-/// direction, while their i and e effects stay those of the whole firing
-/// times cos δ. It keeps no state: each orbit's plan follows from that
+/// dump_arc_rad (δ): their thrust lines part by about 2 sin θ sin δ (θ the
+/// cant), so together they reach every direction, while their i and e effects
+/// stay those of the whole firing times cos δ. Why: docs/s3_station_keeping.md,
+/// "Momentum dumping". It keeps no state: each orbit's plan follows from that
 /// orbit's mean elements alone.
 class StationKeepingPlanner {
  public:

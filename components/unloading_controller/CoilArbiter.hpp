@@ -38,7 +38,7 @@ struct CoilArbiterOutput {
   CoilWindowReport report;
 };
 
-/// One owner for the magnetorquers (algorithms.md; issue "coil arbitration"): the
+/// One owner for the magnetorquers (algorithms.md): the
 /// unloading law drives them unless a requested window holds them. A window runs
 /// whole — quiet, pulse, quiet after — and is never interrupted or overlapped; a
 /// request arriving while one runs waits until it ends. A request whose dipole a

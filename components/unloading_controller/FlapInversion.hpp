@@ -50,15 +50,12 @@ struct FlapSolution {
 /// plates of the wing whose drag gives the yaw's sign, with opposite signs (1b, 1d, and rule 2
 /// as their c_ax → 0 limit, without the seed's jump at |c_ax| = 1e-4).
 ///
-/// Replacement table (the seed's Table 1 is lost; derived from the symmetry of Flaps.hpp):
-/// the two plates of a wing share its centroid and lever arm, so their (g, h) maps are the
-/// same, and a failed plate's job goes to its wing partner, G1 ↔ G3, G2 ↔ G4. That is exact,
-/// at the same drag, whenever the pattern uses one plate of that wing (C2 <= 1). The yaw pair
-/// needs both plates of one wing: with one of them failed, the partner takes the yaw (angle
-/// y_a, sign of c_ax) and both plates of the other wing, at y_b with the opposite sign,
-/// cancel its roll: g(y_a) − 2 g(y_b) = |c_ax|, ±(y_a^{3/2} − 2 y_b^{3/2}) = c_az, which covers
-/// C2 >= 1 (c_az grows monotonically with y_b at fixed c_ax) at more drag. Drag-only with a
-/// plate failed: its partner and one plate of the other wing at opposite angles, θ and −θ.
+/// Replacement table (the seed's Table 1 is lost): a failed plate's job goes to its wing
+/// partner, G1 ↔ G3, G2 ↔ G4; a yaw pair with one plate failed takes the partner (y_a) and
+/// both plates of the other wing (y_b, opposite sign):
+///   g(y_a) − 2 g(y_b) = |c_ax|,   ±(y_a^{3/2} − 2 y_b^{3/2}) = c_az;
+/// drag-only: the partner and one plate of the other wing at θ and −θ.
+/// Derivation: docs/magnetic_control.md, "Replacement table" (seed S2).
 class FlapInversion {
  public:
   using Params = FlapInversionParams;

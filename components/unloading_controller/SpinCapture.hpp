@@ -19,38 +19,22 @@ namespace flatsat::unloading_controller {
 ///   m_i = −m0_i sgn(P_i),
 ///
 /// with a the chosen body axis, ω_s the requested spin rate (inertial, about n) and
-/// ω0 the orbital rate. Derivation:
-///  1. In body axes Ḃ = R_BN ḃ_N − ω × B. The field's direction turns in inertial
-///     space: on a near-polar orbit the dipole field B ∝ cos u·t̂ − 2 sin u·r̂ (u the
-///     argument of latitude, t̂ north, r̂ up) turns twice per orbit, in the sense of
-///     the orbit (3ω0 over the equator, 1.5ω0 over the poles, 2ω0 on average), so
-///     ḃ_N ≈ Ω_f × b_N with Ω_f ≈ 2ω0 n, and Ḃ = B × (ω − Ω_f).
-///  2. Hence P = B × e with e = ω − Ω_f − ω_ref, and the coil torque τ = m × B obeys
-///     eᵀτ = mᵀ(B × e) = mᵀP = −Σ m0_i |P_i| ≤ 0: the bang-bang law can only shrink
-///     the part of e across B, and the orbit turns B, so all of e goes.
-///  3. The rest point e = 0 is ω = ω_ref + Ω_f = (ω_s − 2ω0) a + 2ω0 n. A rigid body
-///     turning steadily has a fixed rate in body axes, so n must be fixed in body
-///     axes too: ω ∥ n ∥ a, and with a = n the spin is ω_s about n. The minus sign
-///     in P = Ḃ − B × ω_ref is what makes step 2 dissipative (with +, the rest point
-///     is ω = −ω_ref + Ω_f and the law spins the body the wrong way).
-///  4. The orbital term is 2ω0, not ω0: Ḃ measures the body's turn relative to the
-///     field, and the field turns at 2ω0. With ω0 (the reading "spin + orbital rate"
-///     of ω_ref) the rate settles ω0 high: 3 % of a 2 deg/s spin at 550 km; with no
-///     orbital term, 2ω0 high (6 %). The closed-loop tests ([bdot]) and `flatsat
-///     study spin` check the rate against ω_s itself.
+/// ω0 the orbital rate. In body axes Ḃ = B × (ω − Ω_f), the field turning at
+/// Ω_f ≈ 2ω0 n; so P = B × e with e = ω − Ω_f − ω_ref, the coils' torque τ = m × B
+/// gives eᵀτ = −Σ m0_i |P_i| ≤ 0, and at the rest point e = 0 the body spins at ω_s
+/// about a = n.
 /// Classic B-dot is ω_ref = 0: the rate goes to Ω_f, ≈ 2ω0 about n.
+/// Derivation: docs/magnetic_control.md, "The S4 combination, derived".
 ///
 /// Where the field's turn comes from (`field_turn`):
-///  - kOrbitRate, the seed's: Ω_f ≈ κω0 n with n taken as a. The real Ω_f is uneven
-///    (1.5ω0 to 3ω0 along n, and across n where the dipole's tilt and the higher
-///    harmonics bend the field), and the bang-bang law follows it: on s4_spin.yaml
-///    (IGRF degree 10) the spin axis wanders 0-9 deg and the rate ±4 % within each
-///    orbit, and 5 deg / 5 % are held only from about 5.9 orbits on (docs/magnetic_control.md).
+///  - kOrbitRate, the seed's: Ω_f ≈ κω0 n with n taken as a. The real Ω_f is uneven,
+///    and the bang-bang law follows it.
 ///  - kModel: the onboard orbit and field model give ḃ_N, and Bdot takes the field's
 ///    whole turn out of Ḃ (R̂ from TRIAD of n ↔ a and b_N ↔ B, exact at the rest
-///    point a = n). Then P = B × (ω − ω_s a): ω_ref = ω_s a. Away from the rest
-///    point R̂ is off by the tilt of a from n, and that residual, like the seed's
-///    κω0(n − a), is what turns a onto n. Sensors are still a magnetometer alone.
+///    point a = n). Then P = B × (ω − ω_s a): ω_ref = ω_s a. Sensors are still a
+///    magnetometer alone.
+/// Why, and how well each does: docs/magnetic_control.md, "Why the seed's form misses
+/// 5 orbits, and the field-turn model".
 enum class FieldTurn { kOrbitRate, kModel };
 
 struct SpinCaptureParams {

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// Samples Fast DDS drops before the bus's topic types see them (issue 30,
-// point 6; bus/FastDdsLog.hpp says where Fast DDS 2.9.1 drops them): a
+// Samples Fast DDS drops before the bus's topic types see them (bus/FastDdsLog.hpp
+// says where Fast DDS 2.9.1 drops them): a
 // payload larger than the type allows, and an empty one. Each is counted in
 // the reader's bus, and Fast DDS's own log of them, one error per sample and
 // reader until now, reaches spdlog only at its 1st, 10th, 100th, ... repeat.

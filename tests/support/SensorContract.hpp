@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 #pragma once
-// A sensor topic's contract (issue 4's conformance test), checked the same
+// A sensor topic's contract (the sensor conformance test), checked the same
 // way whoever produces the samples, an emulator or a hardware bridge: header
 // fields, monotonic time, rate, and, for every valid sample, finite values in
 // the topic's units and physical range, within the sensor's error budget of

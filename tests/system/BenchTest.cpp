@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// flatsat bench's middleware figures (issue 10): a truth-state hop between two
+// flatsat bench's middleware figures: a truth-state hop between two
 // processes and the bare lockstep graph's rate, both over the rig's own bus.
 #include <catch2/catch.hpp>
 

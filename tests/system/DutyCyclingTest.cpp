@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
-// Duty-cycling against magnetometer sampling in the closed loop (issue 6;
-// issue 4's torquer coupling and blanking): with the torquers' own field C m
+// Duty-cycling against magnetometer sampling in the closed loop
+// (the magnetometer's torquer coupling and blanking): with the torquers' own field C m
 // reaching the magnetometer, the reading holds exactly C m when a coil is on
 // at the sample instant, none of the commanded dipole when the unloading
 // controller keeps the step's last part quiet, and blanking flags exactly the

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Several spacecraft in one run (spacecraft_count, issue 10): each on its own
+// Several spacecraft in one run (spacecraft_count): each on its own
 // bus, so spacecraft i records exactly what a run of the scenario alone with
 // seed + i records, composed or as processes on a domain of its own.
 #include <catch2/catch.hpp>

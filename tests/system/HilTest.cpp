@@ -53,7 +53,7 @@ TEST_CASE("a magnetometer bridge takes over mid-run and the emulator takes back 
   // The closed loop never noticed (the default rig's usual error is ~0.14 deg).
   CHECK(s["pointing_error_deg_max"].get<double>() < 0.5);
 
-  // Issue 4's conformance test, bridge side: the bridge's samples keep the
+  // The sensor conformance test, bridge side: the bridge's samples keep the
   // magnetometer topic's contract exactly as the emulator's do, and so do the
   // emulator's on either side of the hand-over (the recorder, an exclusive
   // reader, has only the owner's samples).

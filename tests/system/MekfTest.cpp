@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // The rig on the MEKF (deploy/scenarios/mekf.yaml), judged on the recorded truth: the
-// issue's pins for accuracy and covariance consistency, and a magnetometer lost by a fault.
+// pins for accuracy and covariance consistency, and a magnetometer lost by a fault.
 #include <catch2/catch.hpp>
 
 #include <filesystem>
@@ -54,7 +54,7 @@ TEST_CASE("MEKF rig: attitude within 0.5 deg (3 sigma) in sunlight, covariance c
           "[system][slow]") {
   const auto run = runMekf("mekf", "");
   INFO(run.summary.dump(2));
-  // Issue 5's pins: < 0.5° (3σ) in sunlight with gyro + magnetometer + Sun sensor, and the
+  // The pins: < 0.5° (3σ) in sunlight with gyro + magnetometer + Sun sensor, and the
   // attitude NEES inside its two-sided 95 % χ²_3 bounds for (about) 95 % of the samples.
   CHECK(run.summary["attitude_error_deg_3sigma"].get<double>() < 0.5);
   CHECK(run.summary["nees_in_bounds_fraction"].get<double>() >= 0.9);

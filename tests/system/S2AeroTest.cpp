@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Seed S2 in closed loop at 400 km (issue 6; algorithms.md S2; deploy/scenarios/s2_aero.yaml):
+// Seed S2 in closed loop at 400 km (algorithms.md S2; deploy/scenarios/s2_aero.yaml):
 // the coils and the flaps together give the torque the unloading law asks for, the flaps no
 // more of it than its component along B (up to B's tilt out of their roll-yaw plane), and the
 // flaps drag less than when they take roll and yaw alone.

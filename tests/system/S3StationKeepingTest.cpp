@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
-// Seed S3 over the bus (issue 8): a year of GEO station keeping at 75°E in
+// Seed S3 over the bus: a year of GEO station keeping at 75°E in
 // each of the four states, the planner, the sequencer and the dynamics server
-// each a component of the rig. What the issue asks: the box held (longitude
+// each a component of the rig. What is asked: the box held (longitude
 // ±0.05°, inclination 0.05°, eccentricity 2e-4); the firings actually flown
 // (read from the recording) those of the seed's Table I for the state and
 // season, none in the Earth's shadow; a failure injected mid-run switches the

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Issue 4's conformance test, emulator side: every sensor topic of a lockstep
+// The sensor conformance test, emulator side: every sensor topic of a lockstep
 // rig keeps its contract (tests/support/SensorContract.hpp). HilTest checks
 // the magnetometer bridge's samples against the same contract.
 #include <catch2/catch.hpp>

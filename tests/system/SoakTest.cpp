@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// The soak (issue "Reliability"): the default rig paced for FLATSAT_SOAK_MINUTES
+// The soak: the default rig paced for FLATSAT_SOAK_MINUTES
 // (10 in CI; `flatsat soak --minutes 600` is the long one) while a seeded random
 // non-server component is SIGKILLed every 3..8 s and started again by the
 // launcher. `flatsat soak` checks the run itself (tools/SoakCommand.hpp); here its

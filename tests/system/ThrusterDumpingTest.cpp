@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Momentum dumping by thrusters over the bus (issue 7): from 90 % of the wheels'
+// Momentum dumping by thrusters over the bus: from 90 % of the wheels'
 // capacity to under 10 %, the wheels holding the Sun within 1 deg meanwhile.
 #include <catch2/catch.hpp>
 

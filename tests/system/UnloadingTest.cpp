@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Issue 6's unloading pin: 10 orbits of the ROSAT-like rig under gravity-gradient,
+// The unloading pin: 10 orbits of the ROSAT-like rig under gravity-gradient,
 // drag and solar-pressure torques, the cross-product law with hysteresis
 // (deploy/scenarios/unloading_10orbits.yaml), against the same run with it off,
 // and with the field from the onboard model and the attitude estimate.
@@ -25,7 +25,7 @@ TEST_CASE("cross-product unloading holds the wheels inside its start threshold o
   CHECK(on["wheel_momentum_Nms_max"].get<double>() <= 1.1 * kStart_Nms);
   CHECK(on["wheel_saturation_events"].get<int>() == 0);
   CHECK(on["pointing_error_deg_max"].get<double>() < 0.5);
-  // The issue's third field source: the onboard IGRF turned into body axes by the
+  // The third field source: the onboard IGRF turned into body axes by the
   // attitude estimate, no magnetometer reading used: the same bound holds.
   const auto model = test::runScenario(scenario, test::freshDir("u10-model"),
                                        "--composed --set components.unloading_controller.field_source=model_attitude")

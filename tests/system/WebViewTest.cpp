@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Issue 11's live web view: `flatsat web` beside a running rig, the page loaded in
+// The live web view: `flatsat web` beside a running rig, the page loaded in
 // Debian's headless Chromium, which must show every component of the rig in the
 // health table and live truth samples in the plots; a screenshot is kept.
 #include <catch2/catch.hpp>

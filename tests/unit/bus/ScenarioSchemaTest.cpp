@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // docs/scenario.md documents every key the shipped scenarios use: each key path
 // of deploy/scenarios/*.yaml must appear in backticks in the document, so the
-// schema cannot fall behind the scenarios (issue 11). Keys every component
+// schema cannot fall behind the scenarios. Keys every component
 // shares (rate_divider, role, faults, ...) are documented once as
 // components.<name>.key.
 #include <filesystem>

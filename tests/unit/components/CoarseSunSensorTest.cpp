@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// The coarse cosine sun sensor (issue 4): cell outputs, the least-squares Sun vector of
+// The coarse cosine sun sensor: cell outputs, the least-squares Sun vector of
 // opposite pairs, noise statistics, eclipse, and the albedo bias toward the Earth.
 #include <cmath>
 #include <numbers>

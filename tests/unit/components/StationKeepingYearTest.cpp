@@ -2,7 +2,7 @@
 // Seed S3 closed over a year, algorithms only: the GEO plant (J2–J4, J22,
 // Sun, Moon, solar pressure with the Earth's shadow) under the mean-element
 // filter and the planner, each firing given as an impulse at its right
-// ascension. What the issue asks of the station box: longitude within
+// ascension. What is asked of the station box: longitude within
 // ±0.05°, inclination within 0.05°, eccentricity below 2e-4, in every state;
 // and no firing in the Earth's shadow. At 75°E (next to the stable point of
 // the J22 field) every state holds the box. At 19.2°E, where J22 pulls east

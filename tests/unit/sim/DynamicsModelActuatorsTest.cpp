@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// DynamicsModel with the disturbances and actuators of issue 3: panels (drag,
+// DynamicsModel with its disturbances and actuators: panels (drag,
 // solar pressure), residual dipole, wheel friction, thrusters and S2 flaps.
 #include <cmath>
 #include <cstring>
@@ -248,7 +248,7 @@ TEST_CASE("DynamicsModel with every model fitted is deterministic", "[sim][actua
 }
 
 TEST_CASE("DynamicsModel: a quiet part of the step switches the coils off", "[sim][actuators]") {
-  // Duty-cycling against magnetometer sampling (issue 6): coils on over the
+  // Duty-cycling against magnetometer sampling: coils on over the
   // first (1 - q) of the step only. The coils' share of the momentum change is
   // then (1 - q) times that of a full step, to the field's and attitude's
   // change within 0.1 s.
