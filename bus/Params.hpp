@@ -40,6 +40,8 @@ class ParamReader {
   std::vector<ParamReader> list(const std::string& key);
   /// Reports keys present in the mapping that no read() or section() asked for.
   void finish();
+  /// Keys of a section two readers share that the other reader reads: finish() does not report them.
+  void leave(const std::vector<std::string>& keys) { used_.insert(used_.end(), keys.begin(), keys.end()); }
   /// Reports a problem at `key` (or at the mapping itself when key is empty).
   void problem(const std::string& key, const std::string& reason);
   /// Reports each "field: reason" of a validate() at this mapping's path.

@@ -68,10 +68,10 @@ struct Scenario {
   std::uint64_t seedFor(const std::string& component) const;
 };
 
-/// Top-level sections that describe the plant; the dynamics server reads
-/// and checks them.
+/// Top-level sections that describe the spacecraft and its start (vehicle/
+/// and the dynamics server read and check them).
 inline const std::vector<std::string> kPlantSections = {"spacecraft", "orbit", "environment",
-                                                        "initial"};
+                                                        "initial", "onboard"};
 
 /// The scenario file's YAML with its `base:` resolved: `base: other.yaml`
 /// (relative to the file) takes that scenario and lays this file's keys over

@@ -6,6 +6,7 @@
 // Returns the exit code: 0 done, 1 failed, 2 bad configuration.
 
 namespace flatsat {
+namespace dynamics_server { int runProcess(int argc, char** argv); }
 namespace magnetometer { int runProcess(int argc, char** argv); }
 namespace sun_sensor { int runProcess(int argc, char** argv); }
 namespace gyro { int runProcess(int argc, char** argv); }

@@ -1,7 +1,10 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "components/Registry.hpp"
 
+#include <type_traits>
+
 #include "components/attitude_controller/AttitudeControllerNode.hpp"
+#include "components/dynamics_server/DynamicsServerNode.hpp"
 #include "components/estimator/EstimatorNode.hpp"
 #include "components/gyro/GyroNode.hpp"
 #include "components/magnetometer/MagnetometerNode.hpp"
@@ -14,24 +17,36 @@
 #include "components/thruster_sequencer/ThrusterSequencerNode.hpp"
 #include "components/unloading_controller/UnloadingControllerNode.hpp"
 #include "components/wheel_tach/WheelTachNode.hpp"
-#include "sim/DynamicsServerNode.hpp"
-#include "sim/DynamicsServerParams.hpp"
+#include "vehicle/VehicleReader.hpp"
 
 namespace flatsat {
 
 namespace {
 
+/// A reader `read(scenario, vehicle, args, problems)`, or one of a component
+/// that needs nothing of the vehicle, `read(scenario, args, problems)`.
+template <class Read>
+auto readWith(const Read& read, const bus::Scenario& s, const vehicle::Vehicle& v, const bus::NodeArgs& a,
+              bus::ConfigProblems& p) {
+  if constexpr (std::is_invocable_v<Read, const bus::Scenario&, const vehicle::Vehicle&, const bus::NodeArgs&,
+                                    bus::ConfigProblems&>) {
+    return read(s, v, a, p);
+  } else {
+    return read(s, a, p);
+  }
+}
+
 /// A kind whose node composes: `NodeType(bus, options, read(...))`.
 template <class NodeType, class Read>
 ComponentKind kind(const std::string& name, Read read) {
   return {name, "flatsat-" + name,
-          [read](const bus::Scenario& s, const bus::NodeArgs& a, bus::ConfigProblems& p) {
-            read(s, a, p);
+          [read](const bus::Scenario& s, const vehicle::Vehicle& v, const bus::NodeArgs& a, bus::ConfigProblems& p) {
+            readWith(read, s, v, a, p);
           },
-          [read](bus::Bus& bus, bus::NodeOptions options, const bus::Scenario& s,
+          [read](bus::Bus& bus, bus::NodeOptions options, const bus::Scenario& s, const vehicle::Vehicle& v,
                  const bus::NodeArgs& a) -> std::unique_ptr<bus::Node> {
             bus::ConfigProblems problems;
-            auto params = read(s, a, problems);
+            auto params = readWith(read, s, v, a, problems);
             if (!problems.empty()) throw bus::ScenarioError(a.name + ":\n" + problems.joined());
             return std::make_unique<NodeType>(bus, std::move(options), params);
           },
@@ -43,21 +58,32 @@ template <class Read>
 ComponentKind processOnly(const std::string& name, Read read, const std::string& reason,
                           std::vector<std::string> reads) {
   return {name, "flatsat-" + name,
-          [read](const bus::Scenario& s, const bus::NodeArgs& a, bus::ConfigProblems& p) {
-            read(s, a, p);
+          [read](const bus::Scenario& s, const vehicle::Vehicle& v, const bus::NodeArgs& a, bus::ConfigProblems& p) {
+            readWith(read, s, v, a, p);
           },
           {}, reason, std::move(reads)};
+}
+
+/// What components need of each other's settings, checked where the whole rig is seen.
+void checkRig(const bus::Scenario& scenario, const vehicle::Vehicle& vehicle, bus::ConfigProblems& problems) {
+  if (!scenario.hasComponent("station_keeping")) return;
+  const auto where = scenario.file + ": components.station_keeping: ";
+  if (vehicle.truth.orbit_track.propagator != sim::OrbitPropagation::kNumerical) {
+    problems.add(where + "needs orbit.propagator: numerical (the thrust must move the orbit)");
+  }
+  bus::ConfigProblems reported_by_the_server;
+  const auto server = dynamics_server::readParams(scenario, vehicle, {scenario.file, "dynamics_server", ""},
+                                                  reported_by_the_server);
+  if (!server.dynamics.attitude_held) {
+    problems.add(where + "needs components.dynamics_server.attitude: held_east_north_zenith (the thrusters' frame)");
+  }
 }
 
 }  // namespace
 
 const std::vector<ComponentKind>& componentKinds() {
   static const std::vector<ComponentKind> kinds = {
-      kind<sim::DynamicsServerNode>(
-          "dynamics_server",
-          [](const bus::Scenario& s, const bus::NodeArgs& a, bus::ConfigProblems& p) {
-            return sim::readDynamicsServerParams(s, a.name, p);
-          }),
+      kind<dynamics_server::DynamicsServerNode>("dynamics_server", dynamics_server::readParams),
       kind<magnetometer::MagnetometerNode>("magnetometer", magnetometer::readParams),
       kind<sun_sensor::SunSensorNode>("sun_sensor", sun_sensor::readParams),
       kind<gyro::GyroNode>("gyro", gyro::readParams),
@@ -92,6 +118,7 @@ const ComponentKind* findComponentKind(const std::string& name) {
 
 std::vector<std::string> checkScenario(const bus::Scenario& scenario, const std::string& out_dir) {
   bus::ConfigProblems problems;
+  const vehicle::Vehicle vehicle = vehicle::readVehicle(scenario, problems);
   for (const auto& component : scenario.components) {
     const ComponentKind* k = findComponentKind(component.name);
     if (k == nullptr) {
@@ -101,13 +128,14 @@ std::vector<std::string> checkScenario(const bus::Scenario& scenario, const std:
                    ": unknown component (known:" + known + ")");
       continue;
     }
-    k->check(scenario, {scenario.file, component.name, out_dir}, problems);
+    k->check(scenario, vehicle, {scenario.file, component.name, out_dir}, problems);
   }
   for (const char* required : {"dynamics_server", "recorder"}) {
     if (!scenario.hasComponent(required)) {
       problems.add(scenario.file + ": components: the rig needs a " + std::string(required));
     }
   }
+  checkRig(scenario, vehicle, problems);
   return problems.list();
 }
 

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "bus/NodeMain.hpp"
+#include "vehicle/VehicleDescription.hpp"
 
 namespace flatsat {
 
@@ -14,11 +15,12 @@ struct ComponentKind {
   std::string name;        ///< as listed under components: in a scenario
   std::string executable;  ///< flatsat-<name>, next to the flatsat tool
   /// Reads the component's parameters, reporting every problem.
-  std::function<void(const bus::Scenario&, const bus::NodeArgs&, bus::ConfigProblems&)> check;
+  std::function<void(const bus::Scenario&, const vehicle::Vehicle&, const bus::NodeArgs&, bus::ConfigProblems&)>
+      check;
   /// Builds the node on a bus of this process (a composed rig) with `options`;
   /// empty when the kind cannot be composed (see not_composable).
   std::function<std::unique_ptr<bus::Node>(bus::Bus&, bus::NodeOptions, const bus::Scenario&,
-                                           const bus::NodeArgs&)>
+                                           const vehicle::Vehicle&, const bus::NodeArgs&)>
       make;
   std::string not_composable;  ///< why a composed rig cannot hold it (empty: it can)
   /// The registry topics a kind that cannot be composed reads (its DDS Security
@@ -29,9 +31,9 @@ struct ComponentKind {
 const std::vector<ComponentKind>& componentKinds();
 const ComponentKind* findComponentKind(const std::string& name);
 
-/// Every problem of a scenario: the top level (loadScenario), each listed
-/// component's parameters, unknown component names and a missing time
-/// master or recorder. Empty when the rig can start.
+/// Every problem of a scenario: the vehicle (read once), each listed
+/// component's parameters, unknown component names, a missing time master or
+/// recorder, and what components need of each other. Empty when the rig can start.
 std::vector<std::string> checkScenario(const bus::Scenario& scenario, const std::string& out_dir);
 
 }  // namespace flatsat

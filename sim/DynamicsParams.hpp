@@ -21,9 +21,6 @@
 
 namespace flatsat::sim {
 
-/// [s] TT − UTC = 32.184 s + 37 leap seconds (valid since 2017-01-01).
-inline constexpr double kTtMinusUtc_s = 69.184;
-
 /// The geomagnetic field of the truth.
 enum class FieldModel {
   kTiltedDipole,        // DynamicsParams::field, IGRF degree 1

@@ -16,6 +16,8 @@ inline constexpr double kSecondsPerDay = 86400.0;
 inline constexpr double kJulianDateJ2000 = 2451545.0;
 /// [d] days per Julian century.
 inline constexpr double kDaysPerJulianCentury = 36525.0;
+/// [s] TT − UTC = 32.184 s + 37 leap seconds (valid since 2017-01-01).
+inline constexpr double kTtMinusUtc_s = 69.184;
 
 /// [s] from [ns].
 constexpr double toSeconds(SimTime t) { return static_cast<double>(t) * 1e-9; }

@@ -14,6 +14,7 @@
 #include "bus/NodeMain.hpp"
 #include "components/Registry.hpp"
 #include "tools/Progress.hpp"
+#include "vehicle/VehicleReader.hpp"
 
 namespace flatsat::tools {
 
@@ -75,6 +76,7 @@ constexpr std::uint64_t kStepsPerTurn = 512;
 class ComposedRig {
  public:
   ComposedRig(const bus::Scenario& scenario, const LaunchOptions& options, const std::string& out_dir) {
+    const vehicle::Vehicle vehicle = vehicle::vehicleOf(scenario);
     for (const auto& c : scenario.components) {
       bus::NodeOptions node_options = bus::nodeOptions(scenario, c.name);
       // One thread runs every node: a wait that is not over at once would
@@ -82,7 +84,7 @@ class ComposedRig {
       node_options.peer_timeout = std::chrono::milliseconds(0);
       node_options.step_timeout = std::chrono::milliseconds(0);
       nodes_.push_back(findComponentKind(c.name)->make(newBus(scenario, c.name), std::move(node_options),
-                                                       scenario, {options.scenario_file, c.name, out_dir}));
+                                                       scenario, vehicle, {options.scenario_file, c.name, out_dir}));
       if (auto* m = dynamic_cast<bus::TimeMaster*>(nodes_.back().get())) master_ = m;
       else if (auto* component = dynamic_cast<bus::Component*>(nodes_.back().get())) components_.push_back(component);
     }

@@ -19,6 +19,7 @@
 #include "bus/Topics.hpp"
 #include "components/Registry.hpp"
 #include "tools/Guarded.hpp"
+#include "vehicle/VehicleReader.hpp"
 
 namespace flatsat::tools {
 
@@ -117,7 +118,7 @@ std::map<std::string, Endpoints> endpointsOfComponents() {
         bus::BusOptions options;
         options.participant_name = kind.name;
         bus::Bus bus(options, hub);
-        const auto node = kind.make(bus, bus::nodeOptions(scenario, kind.name), scenario,
+        const auto node = kind.make(bus, bus::nodeOptions(scenario, kind.name), scenario, vehicle::vehicleOf(scenario),
                                     {scenario.file, kind.name, scratch.path.string()});
         auto& seen = endpoints[kind.name];
         bus::forEachTopic([&](const auto& def) {

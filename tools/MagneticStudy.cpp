@@ -11,9 +11,11 @@
 #include "bus/Scenario.hpp"
 #include "components/magnetometer/MagnetometerNode.hpp"
 #include "components/unloading_controller/UnloadingControllerNode.hpp"
-#include "sim/DynamicsServerParams.hpp"
 #include "tools/Conventions.hpp"
 #include "tools/MagneticMetrics.hpp"
+#include "components/dynamics_server/DynamicsServerParams.hpp"
+#include "sim/DynamicsModel.hpp"
+#include "vehicle/VehicleReader.hpp"
 
 namespace flatsat::tools {
 namespace {
@@ -55,8 +57,9 @@ struct CaseResult {
 CaseResult runCase(bus::Scenario scenario, std::uint64_t seed) {
   scenario.seed = seed;
   bus::ConfigProblems problems;
-  const auto server = sim::readDynamicsServerParams(scenario, "dynamics_server", problems);
-  const auto node = unloading_controller::readParams(scenario, {scenario.file, "unloading_controller", ""}, problems);
+  const vehicle::Vehicle craft = vehicle::readVehicle(scenario, problems);
+  const auto server = dynamics_server::readParams(scenario, craft, {scenario.file, "dynamics_server", ""}, problems);
+  const auto node = unloading_controller::readParams(scenario, craft, {scenario.file, "unloading_controller", ""}, problems);
   const auto& control = node.modes;
   const auto sensor = magnetometer::readParams(scenario, {scenario.file, "magnetometer", ""}, problems);
   if (!problems.empty()) throw std::invalid_argument(problems.joined());
@@ -64,7 +67,7 @@ CaseResult runCase(bus::Scenario scenario, std::uint64_t seed) {
   sim::DynamicsModel model(server.dynamics);
   magnetometer::MagnetometerModel field_sensor(sensor.model);
   unloading_controller::MagneticModes modes(control);
-  std::optional<estimator::ReferenceModel> onboard;
+  std::optional<onboard::ReferenceModel> onboard;
   if (node.onboard) onboard.emplace(*node.onboard);
   MagneticMetricsParams judge;
   judge.max_dipole_Am2 = control.unload.max_dipole_Am2;

@@ -13,9 +13,11 @@
 #include <string>
 
 #include "bus/Scenario.hpp"
-#include "sim/DynamicsServerParams.hpp"
 #include "sim/SphericalHarmonicField.hpp"
 #include "tools/FieldCommand.hpp"
+#include "components/dynamics_server/DynamicsServerParams.hpp"
+#include "sim/DynamicsModel.hpp"
+#include "vehicle/VehicleReader.hpp"
 
 namespace flatsat::tools {
 namespace {
@@ -47,7 +49,8 @@ double dynamicsStepMicroseconds() {
   const bus::Scenario scenario = bus::loadScenario(
       firstExisting("default.yaml", FLATSAT_SOURCE_SCENARIO_DIR, FLATSAT_INSTALL_SCENARIO_DIR));
   bus::ConfigProblems problems;
-  const sim::DynamicsServerParams server = sim::readDynamicsServerParams(scenario, "dynamics_server", problems);
+  const vehicle::Vehicle craft = vehicle::readVehicle(scenario, problems);
+  const dynamics_server::DynamicsServerParams server = dynamics_server::readParams(scenario, craft, {scenario.file, "dynamics_server", ""}, problems);
   if (!problems.empty()) throw std::runtime_error("default scenario: " + problems.joined());
   sim::DynamicsParams p = server.dynamics;
   sim::OrbitForceParams& f = p.orbit_track.forces;

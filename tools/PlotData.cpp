@@ -13,8 +13,8 @@
 #include "bus/Serialization.hpp"
 #include "bus/Topics.hpp"
 #include "components/attitude_controller/AttitudeControllerNode.hpp"
-#include "sim/DynamicsServerParams.hpp"
 #include "tools/Conventions.hpp"
+#include "vehicle/VehicleReader.hpp"
 
 namespace flatsat::tools {
 
@@ -56,7 +56,8 @@ PlotContext readPlotContext(const std::string& scenario_file) {
   if (scenario_file.empty() || !std::filesystem::exists(scenario_file)) return c;
   const auto scenario = bus::loadScenario(scenario_file);
   bus::ConfigProblems ignored;  // the run checked its scenario; what fails stays unset
-  const auto plant = sim::readPlant(scenario, ignored);
+  const vehicle::Vehicle craft = vehicle::readVehicle(scenario, ignored);
+  const auto& plant = craft.truth;
   c.epoch = plant.epoch;
   c.acquisition_s = scenario.acquisition_s;
   if (plant.body.wheel_count > 0) {
@@ -65,7 +66,7 @@ PlotContext readPlotContext(const std::string& scenario_file) {
   if (plant.torquer_max_dipole_Am2.minCoeff() > 0) c.max_dipole_Am2 = plant.torquer_max_dipole_Am2;
   if (scenario.hasComponent("attitude_controller")) {
     const Eigen::Vector3d axis =
-        attitude_controller::readParams(scenario, {scenario.file, "attitude_controller", ""}, ignored)
+        attitude_controller::readParams(scenario, craft, {scenario.file, "attitude_controller", ""}, ignored)
             .law.pointing_axis_B;
     if (axis.norm() > 0) c.pointing_axis_B = axis.normalized();
   }

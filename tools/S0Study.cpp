@@ -12,9 +12,10 @@
 #include "components/gyro/GyroNode.hpp"
 #include "components/wheel_tach/WheelTachNode.hpp"
 #include "sim/DynamicsModel.hpp"
-#include "sim/DynamicsServerParams.hpp"
 #include "sim/Frames.hpp"
 #include "tools/Conventions.hpp"
+#include "components/dynamics_server/DynamicsServerParams.hpp"
+#include "vehicle/VehicleReader.hpp"
 
 namespace flatsat::tools {
 
@@ -76,10 +77,11 @@ double trueRoll(const sim::Truth& truth, const Eigen::Matrix3d& R_N_SE) {
 Setup readSetup(const std::string& file) {
   const bus::Scenario scenario = bus::loadScenario(file);
   bus::ConfigProblems problems;
-  const auto server = sim::readDynamicsServerParams(scenario, "dynamics_server", problems);
+  const vehicle::Vehicle craft = vehicle::readVehicle(scenario, problems);
+  const auto server = dynamics_server::readParams(scenario, craft, {scenario.file, "dynamics_server", ""}, problems);
   Setup s{server.dynamics, server.step_period_ns, server.orbit_period_s,
-          attitude_controller::readParams(scenario, {file, "attitude_controller", ""}, problems).law,
-          wheel_tach::readParams(scenario, {file, "wheel_tach", ""}, problems).model,
+          attitude_controller::readParams(scenario, craft, {file, "attitude_controller", ""}, problems).law,
+          wheel_tach::readParams(scenario, craft, {file, "wheel_tach", ""}, problems).model,
           gyro::readParams(scenario, {file, "gyro", ""}, problems).model,
           sim::julianDate(server.dynamics.epoch)};
   if (!problems.empty()) throw std::runtime_error(problems.joined());

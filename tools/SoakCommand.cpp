@@ -243,7 +243,7 @@ int runSoak(const SoakOptions& o) {
       const bool killed = kills.count(source) != 0;
       long long done = -1;
       if (source == "dynamics_server") {
-        done = std::llround(duration_s / scenario.step_s) + 1;  // steps 0..final (sim/DynamicsServerParams)
+        done = std::llround(duration_s / scenario.step_s) + 1;  // steps 0..final (dynamics_server::readParams)
       } else if (!killed) {
         done = stepsDone(fs::path(run_dir) / "logs" / (source + ".log"), source);
       }

@@ -19,6 +19,7 @@
 #include "tools/Quantile.hpp"
 #include "tools/RunDirectory.hpp"
 #include "tools/S0Study.hpp"
+#include "vehicle/VehicleReader.hpp"
 
 namespace flatsat::tools {
 
@@ -65,12 +66,13 @@ int runStudy(const StudyOptions& o) {
     return 2;
   }
   bus::ConfigProblems problems;
-  const auto sequencer_params = ts::readParams(scenario, {scenario.file, "thruster_sequencer", ""}, problems);
+  const vehicle::Vehicle craft = vehicle::readVehicle(scenario, problems);
+  const auto sequencer_params = ts::readParams(scenario, craft, {scenario.file, "thruster_sequencer", ""}, problems);
   if (sequencer_params.mode != ts::ThrusterSequencerParams::Mode::kAngleOnly) {
     problems.add(o.scenario + ": components.thruster_sequencer.mode: the S1 study needs angle_only");
   }
   const auto& params = sequencer_params.angle_only;
-  const auto sensor = sun_sensor::readParams(scenario, {scenario.file, "sun_sensor", ""}, problems);
+  const auto sensor = sun_sensor::readParams(scenario, craft, {scenario.file, "sun_sensor", ""}, problems);
   if (!problems.empty() || o.cases < 1) {
     for (const auto& p : problems.list()) std::cerr << "error: " << p << "\n";
     if (o.cases < 1) std::cerr << "error: --cases must be >= 1\n";

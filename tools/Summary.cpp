@@ -14,7 +14,6 @@
 #include "bus/Serialization.hpp"
 #include "bus/Topics.hpp"
 #include "components/attitude_controller/AttitudeControllerNode.hpp"
-#include "sim/DynamicsServerParams.hpp"
 #include "sim/Frames.hpp"
 #include "tools/Conventions.hpp"
 #include "tools/SummaryEstimator.hpp"
@@ -23,6 +22,7 @@
 #include "tools/SummaryS2.hpp"
 #include "tools/SummaryS3.hpp"
 #include "tools/SummaryTrust.hpp"
+#include "vehicle/VehicleReader.hpp"
 
 namespace flatsat::tools {
 
@@ -37,12 +37,13 @@ struct MomentumStats {
 nlohmann::ordered_json summarize(const bus::Scenario& scenario, const std::string& recording_path,
                                  const LaunchResult& launch) {
   bus::ConfigProblems ignored;  // the scenario was checked before the run
-  const auto plant = sim::readPlant(scenario, ignored);
+  const vehicle::Vehicle craft = vehicle::readVehicle(scenario, ignored);
+  const auto& plant = craft.truth;
   Eigen::Vector3d axis_B = Eigen::Vector3d::UnitX();
   bool s2_orbital = false;  // pointing judged against seed S2's orbital frame, not the Sun
   if (scenario.hasComponent("attitude_controller")) {
     const auto controller =
-        attitude_controller::readParams(scenario, {scenario.file, "attitude_controller", ""}, ignored);
+        attitude_controller::readParams(scenario, craft, {scenario.file, "attitude_controller", ""}, ignored);
     axis_B = controller.law.pointing_axis_B.normalized();
     s2_orbital = controller.s2_orbital.has_value();
   }

@@ -6,6 +6,7 @@
 #include "bus/Topics.hpp"
 #include "components/unloading_controller/UnloadingControllerNode.hpp"
 #include "tools/MagneticMetrics.hpp"
+#include "vehicle/VehicleReader.hpp"
 
 namespace flatsat::tools {
 
@@ -22,8 +23,9 @@ void summarizeMagnetic(const bus::Scenario& scenario, const bus::Recording& reco
   using unloading_controller::MagneticMode;
   if (!scenario.hasComponent("unloading_controller")) return;
   bus::ConfigProblems ignored;  // the scenario was checked before the run
+  const vehicle::Vehicle craft = vehicle::readVehicle(scenario, ignored);
   const auto control =
-      unloading_controller::readParams(scenario, {scenario.file, "unloading_controller", ""}, ignored).modes;
+      unloading_controller::readParams(scenario, craft, {scenario.file, "unloading_controller", ""}, ignored).modes;
   const bool spin = control.initial_mode == MagneticMode::kSpinCapture ||
                     control.after_detumble == MagneticMode::kSpinCapture;
   if (control.initial_mode == MagneticMode::kUnload) return;

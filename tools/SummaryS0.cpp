@@ -7,8 +7,8 @@
 #include "bus/Convert.hpp"
 #include "bus/Serialization.hpp"
 #include "bus/Topics.hpp"
-#include "sim/DynamicsServerParams.hpp"
 #include "sim/Frames.hpp"
+#include "vehicle/VehicleReader.hpp"
 
 namespace flatsat::tools {
 
@@ -29,7 +29,8 @@ void addS0Metrics(nlohmann::ordered_json& summary, const bus::Scenario& scenario
   if (recording.count(field_topic) == 0) return;
 
   bus::ConfigProblems ignored;
-  const double jd_epoch = sim::julianDate(sim::readPlant(scenario, ignored).epoch);
+  const vehicle::Vehicle craft = vehicle::readVehicle(scenario, ignored);
+  const double jd_epoch = sim::julianDate(craft.truth.epoch);
   std::unordered_map<std::uint64_t, TruthAt> truth;
   recording.forEach(std::string(bus::topics::kTruth.name),
                     [&](std::uint64_t step, const std::string&, const std::vector<std::uint8_t>& bytes) {

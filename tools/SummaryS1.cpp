@@ -8,6 +8,7 @@
 #include "bus/Topics.hpp"
 #include "components/thruster_sequencer/ThrusterSequencerNode.hpp"
 #include "tools/Conventions.hpp"
+#include "vehicle/VehicleReader.hpp"
 
 namespace flatsat::tools {
 
@@ -30,7 +31,8 @@ void summarizeThrusterSequencer(const bus::Scenario& scenario, const bus::Record
                                 nlohmann::ordered_json& summary) {
   if (!scenario.hasComponent("thruster_sequencer")) return;
   bus::ConfigProblems ignored;  // the scenario was checked before the run
-  const auto sequencer = thruster_sequencer::readParams(scenario, {scenario.file, "thruster_sequencer", ""}, ignored);
+  const vehicle::Vehicle craft = vehicle::readVehicle(scenario, ignored);
+  const auto sequencer = thruster_sequencer::readParams(scenario, craft, {scenario.file, "thruster_sequencer", ""}, ignored);
   if (sequencer.mode != thruster_sequencer::ThrusterSequencerParams::Mode::kAngleOnly) return;
   const auto& params = sequencer.angle_only;
   const auto& cycle = params.cycle;

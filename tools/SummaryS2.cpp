@@ -9,6 +9,7 @@
 #include "bus/Topics.hpp"
 #include "components/unloading_controller/UnloadingControllerNode.hpp"
 #include "sim/Atmosphere.hpp"
+#include "vehicle/VehicleReader.hpp"
 
 namespace flatsat::tools {
 
@@ -28,7 +29,8 @@ struct TruthAtStep {
 void summarizeS2(const bus::Scenario& scenario, const bus::Recording& recording, nlohmann::ordered_json& summary) {
   if (!scenario.hasComponent("unloading_controller")) return;
   bus::ConfigProblems ignored;  // the scenario was checked before the run
-  const auto node = unloading_controller::readParams(scenario, {scenario.file, "unloading_controller", ""}, ignored);
+  const vehicle::Vehicle craft = vehicle::readVehicle(scenario, ignored);
+  const auto node = unloading_controller::readParams(scenario, craft, {scenario.file, "unloading_controller", ""}, ignored);
   if (!node.modes.aero) return;
   unloading_controller::AeroAllocationParams alone = *node.modes.aero;
   alone.split = unloading_controller::AeroSplit::kFlapsOnly;

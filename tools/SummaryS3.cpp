@@ -12,6 +12,7 @@
 #include "components/station_keeping/StationKeepingNode.hpp"
 #include "sim/Constants.hpp"
 #include "tools/Conventions.hpp"
+#include "vehicle/VehicleReader.hpp"
 
 namespace flatsat::tools {
 
@@ -25,7 +26,8 @@ constexpr double kYear_s = 365.25 * 86400.0;
 void summarizeS3(const bus::Scenario& scenario, const bus::Recording& recording, nlohmann::ordered_json& summary) {
   if (!scenario.hasComponent("station_keeping")) return;
   bus::ConfigProblems ignored;  // the scenario was checked before the run
-  const auto node = station_keeping::readParams(scenario, {scenario.file, "station_keeping", ""}, ignored);
+  const vehicle::Vehicle craft = vehicle::readVehicle(scenario, ignored);
+  const auto node = station_keeping::readParams(scenario, craft, {scenario.file, "station_keeping", ""}, ignored);
   double longitude_max = 0.0, inclination_max = 0.0, eccentricity_max = 0.0, last_time_s = 0.0;
   std::optional<msg::TruthState> last;
   recording.forEach(std::string(bus::topics::kTruth.name),

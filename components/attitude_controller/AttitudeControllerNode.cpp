@@ -3,8 +3,8 @@
 
 #include "bus/Convert.hpp"
 #include "components/Processes.hpp"
-#include "components/common/ReferenceParams.hpp"
-#include "sim/DynamicsServerParams.hpp"
+#include "components/common/onboard/ReferenceParams.hpp"
+#include "vehicle/VehicleReader.hpp"
 
 namespace flatsat::attitude_controller {
 
@@ -70,14 +70,12 @@ void AttitudeControllerNode::step(const bus::StepContext& ctx) {
   command_.write(message);
 }
 
-AttitudeControllerNodeParams readParams(const bus::Scenario& scenario, const bus::NodeArgs& args,
-                                        bus::ConfigProblems& problems) {
-  bus::ConfigProblems reported_by_dynamics_server;
-  const auto plant = sim::readPlant(scenario, reported_by_dynamics_server);
-  const auto& body = plant.body;
+AttitudeControllerNodeParams readParams(const bus::Scenario& scenario, const vehicle::Vehicle& vehicle,
+                                        const bus::NodeArgs& args, bus::ConfigProblems& problems) {
+  const vehicle::VehicleDescription& known = vehicle.onboard;  // flight software sees only this
   AttitudeControllerNodeParams node;
   SunPointingControllerParams& p = node.law;
-  p.wheels = {body.wheel_count, body.wheel_axes_B, body.wheel_inertia_kg_m2};
+  p.wheels = wheelGeometryOf(known.body);
   auto r = scenario.componentParams(args.name, problems);
   r.read("kp_Nm_per_rad", p.kp_Nm_per_rad, "N m/rad");
   r.read("kd_Nm_s_per_rad", p.kd_Nm_s_per_rad, "N m s/rad");
@@ -86,10 +84,9 @@ AttitudeControllerNodeParams readParams(const bus::Scenario& scenario, const bus
   r.read("pointing_axis_body", p.pointing_axis_B, "-");
   std::string target = "sun";
   r.read("target", target);
-  const auto onboard = readReferenceModel(r, plant);
+  const double field_node_s = onboard::readFieldNodeSpacing(r);
   if (target == "s2_orbital") {
-    node.s2_orbital = onboard;
-    r.problems(onboard.validate());
+    node.s2_orbital = onboard::referenceModelOf(known, field_node_s);
   } else if (target != "sun") {
     r.problem("target", "must be sun or s2_orbital, not \"" + target + "\"");
   }
@@ -99,7 +96,7 @@ AttitudeControllerNodeParams readParams(const bus::Scenario& scenario, const bus
 }
 
 int runProcess(int argc, char** argv) {
-  return bus::runNodeOf<AttitudeControllerNode>(argc, argv, "attitude_controller", readParams);
+  return bus::runNodeOf<AttitudeControllerNode>(argc, argv, "attitude_controller", vehicle::withVehicle(readParams));
 }
 
 }  // namespace flatsat::attitude_controller

@@ -8,7 +8,8 @@
 #include "bus/NodeMain.hpp"
 #include "components/common/LastValid.hpp"
 #include "components/attitude_controller/SunPointingController.hpp"
-#include "components/estimator/ReferenceModel.hpp"
+#include "components/common/onboard/ReferenceModel.hpp"
+#include "vehicle/VehicleDescription.hpp"
 
 namespace flatsat::attitude_controller {
 
@@ -16,7 +17,7 @@ struct AttitudeControllerNodeParams {
   SunPointingControllerParams law;
   /// `target: s2_orbital`: hold seed S2's orbital frame (sim::R_N_S2Orbital) from this
   /// onboard orbit; nullopt (`target: sun`, the default): point pointing_axis_body at the Sun.
-  std::optional<estimator::ReferenceModelParams> s2_orbital;
+  std::optional<onboard::ReferenceModelParams> s2_orbital;
 };
 
 /// Wheel-based pointing: attitude estimate and wheel speeds in, wheel motor
@@ -37,13 +38,13 @@ class AttitudeControllerNode final : public bus::Component {
   bus::WriterOf<bus::topics::kWheelTorqueCmd>& command_ =
       addOutput(bus::topics::kWheelTorqueCmd);
   SunPointingController controller_;
-  std::optional<estimator::ReferenceModel> onboard_;  // local orbital target only
+  std::optional<onboard::ReferenceModel> onboard_;  // local orbital target only
   bus::CommandAcks acks_{bus_};
   bus::ParamCommands<SunPointingControllerParams> params_;
 };
 
-/// components.<name>, with the wheel geometry from spacecraft.wheels.
-AttitudeControllerNodeParams readParams(const bus::Scenario& scenario, const bus::NodeArgs& args,
-                                       bus::ConfigProblems& problems);
+/// components.<name>, with the wheel geometry and orbit knowledge of the vehicle's onboard view.
+AttitudeControllerNodeParams readParams(const bus::Scenario& scenario, const vehicle::Vehicle& vehicle,
+                                        const bus::NodeArgs& args, bus::ConfigProblems& problems);
 
 }  // namespace flatsat::attitude_controller

@@ -6,10 +6,12 @@
 
 #include <Eigen/Core>
 
+#include "sim/RigidBodyWheels.hpp"
+
 namespace flatsat {
 
 /// Reaction-wheel geometry as the controllers see it: up to kMaxWheels slots, of which the
-/// first `count` are live. Filled from the plant's body parameters by the nodes.
+/// first `count` are live. Filled from the vehicle's onboard view by the nodes (wheelGeometryOf).
 struct WheelGeometry {
   static constexpr int kMaxWheels = 4;
 
@@ -30,5 +32,10 @@ struct WheelGeometry {
   /// [-] axes_B with the columns of unused slots set to zero.
   Eigen::Matrix<double, 3, kMaxWheels> liveAxes_B() const;
 };
+
+/// The wheels of a vehicle's body (vehicle/VehicleDescription.hpp) as the controllers see them.
+inline WheelGeometry wheelGeometryOf(const sim::RigidBodyParams& body) {
+  return {body.wheel_count, body.wheel_axes_B, body.wheel_inertia_kg_m2};
+}
 
 }  // namespace flatsat

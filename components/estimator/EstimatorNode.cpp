@@ -5,10 +5,11 @@
 
 #include "bus/Convert.hpp"
 #include "components/Processes.hpp"
-#include "components/common/ReferenceParams.hpp"
 #include "components/common/StateJson.hpp"
-#include "sim/DynamicsServerParams.hpp"
+#include "components/common/onboard/ReferenceParams.hpp"
 #include "sim/Frames.hpp"
+#include "sim/Time.hpp"
+#include "vehicle/VehicleReader.hpp"
 
 namespace flatsat::estimator {
 
@@ -113,7 +114,7 @@ EstimatorNode::EstimatorNode(bus::Bus& bus, bus::NodeOptions options,
 
 void EstimatorNode::stepS0(const bus::StepContext& ctx, const msg::GyroReading& gyro,
                            const Eigen::Vector3d& sun_B_unit, bool sun_valid,
-                           const ReferenceVectors& reference) {
+                           const onboard::ReferenceVectors& reference) {
   const auto tach = tach_->at(ctx.step);
   S0EstimatorInput in;
   in.wheel_speed_rad_s = bus::vec4(tach.wheel_speed_rad_s());
@@ -229,7 +230,7 @@ void EstimatorNode::step(const bus::StepContext& ctx) {
   const msg::GyroReading gyro_sample = gyro_.at(ctx.step);
   const auto gyro = last_gyro_.update(gyro_sample);
   const Vectors v = toVectors(sun, magnetometer);
-  const ReferenceVectors reference = reference_.step(ctx.sim_time_ns);
+  const onboard::ReferenceVectors reference = reference_.step(ctx.sim_time_ns);
   if (s0_) {
     stepS0(ctx, gyro, v.sun_B_unit, v.sun_valid, reference);
   } else {
@@ -282,7 +283,7 @@ void EstimatorNode::step(const bus::StepContext& ctx) {
   estimate_.write(message);
 
   // The status text is built only when a sensor's state changes: building it
-  // every step cost more than the Mahony filter (issue 10, callgrind).
+  // every step cost more than the Mahony filter (callgrind).
   const unsigned status_bits = unsigned{gyro_sample.valid()} | unsigned{v.sun_valid} << 1U |
                                unsigned{v.b_valid} << 2U | unsigned{star_valid_} << 3U |
                                unsigned{message.valid()} << 4U;
@@ -297,12 +298,11 @@ void EstimatorNode::step(const bus::StepContext& ctx) {
   setStatus(status);
 }
 
-EstimatorNodeParams readParams(const bus::Scenario& scenario, const bus::NodeArgs& args,
-                               bus::ConfigProblems& problems) {
-  bus::ConfigProblems reported_by_dynamics_server;
-  const auto plant = sim::readPlant(scenario, reported_by_dynamics_server);
+EstimatorNodeParams readParams(const bus::Scenario& scenario, const vehicle::Vehicle& vehicle,
+                               const bus::NodeArgs& args, bus::ConfigProblems& problems) {
+  const vehicle::VehicleDescription& known = vehicle.onboard;  // flight software sees only this
   EstimatorNodeParams p;
-  p.jd_epoch_utc = sim::julianDate(plant.epoch);
+  p.jd_epoch_utc = sim::julianDate(known.epoch);
   auto r = scenario.componentParams(args.name, problems);
   std::string method = "mahony";
   r.read("method", method);
@@ -311,7 +311,7 @@ EstimatorNodeParams readParams(const bus::Scenario& scenario, const bus::NodeArg
   } else if (method != "mahony") {
     r.problem("method", "'" + method + "' is not mahony or mekf");
   }
-  p.reference = readReferenceModel(r, plant);
+  p.reference = onboard::referenceModelOf(known, onboard::readFieldNodeSpacing(r));
   r.read("use_magnetometer", p.filter.use_magnetometer);
   p.filter.sun_only_init = !scenario.hasComponent("magnetometer");
   r.read("kp_per_s", p.filter.kp_per_s, "1/s");
@@ -335,7 +335,7 @@ EstimatorNodeParams readParams(const bus::Scenario& scenario, const bus::NodeArg
     bool enabled = false;
     s0.read("enabled", enabled);
     S0EstimatorParams q;
-    q.wheels = {plant.body.wheel_count, plant.body.wheel_axes_B, plant.body.wheel_inertia_kg_m2};
+    q.wheels = wheelGeometryOf(known.body);
     s0.read("quiet_s", q.quiet_s, "s");
     s0.read("pulse_s", q.pulse_s, "s");
     s0.read("settle_s", q.settle_s, "s");
@@ -349,9 +349,9 @@ EstimatorNodeParams readParams(const bus::Scenario& scenario, const bus::NodeArg
     s0.read("max_sun_offset_rad", q.max_sun_offset_rad, "rad");
     bool total_momentum = false;
     s0.read("total_momentum", total_momentum);
-    if (total_momentum) q.body_inertia_kg_m2 = plant.body.J_B_kg_m2;
+    if (total_momentum) q.body_inertia_kg_m2 = known.body.J_B_kg_m2;
     s0.problems(q.validate());
-    if (q.dipole_Am2 > plant.torquer_max_dipole_Am2.x()) {
+    if (q.dipole_Am2 > known.torquer_max_dipole_Am2.x()) {
       s0.problem("dipole_Am2", "exceeds the x coil's limit (spacecraft.torquers.max_dipole_Am2)");
     }
     s0.finish();
@@ -363,7 +363,7 @@ EstimatorNodeParams readParams(const bus::Scenario& scenario, const bus::NodeArg
 }
 
 int runProcess(int argc, char** argv) {
-  return bus::runNodeOf<EstimatorNode>(argc, argv, "estimator", readParams);
+  return bus::runNodeOf<EstimatorNode>(argc, argv, "estimator", vehicle::withVehicle(readParams));
 }
 
 }  // namespace flatsat::estimator

@@ -8,7 +8,8 @@
 #include "components/common/LastValid.hpp"
 #include "components/estimator/AttitudeEstimator.hpp"
 #include "components/estimator/Mekf.hpp"
-#include "components/estimator/ReferenceModel.hpp"
+#include "components/common/onboard/ReferenceModel.hpp"
+#include "vehicle/VehicleDescription.hpp"
 #include "components/estimator/S0Estimator.hpp"
 
 namespace flatsat::estimator {
@@ -23,7 +24,7 @@ struct EstimatorNodeParams {
   EstimatorMethod method = EstimatorMethod::kMahony;  // [-] mahony | mekf
   AttitudeEstimatorParams filter;                     // kMahony; its use_magnetometer for both
   MekfParams mekf;                                    // used by kMekf
-  ReferenceModelParams reference;
+  onboard::ReferenceModelParams reference;
   std::optional<S0EstimatorParams> s0;  // seed S0 field estimate (components.<name>.s0.enabled)
   double jd_epoch_utc = 0.0;            // [d] for the ecliptic of date
 };
@@ -54,7 +55,7 @@ class EstimatorNode final : public bus::Component {
   LastValid<msg::GyroReading> last_gyro_;  // rides through gyro dropouts
   std::optional<AttitudeEstimator> mahony_;
   std::optional<Mekf> mekf_;
-  ReferenceModel reference_;
+  onboard::ReferenceModel reference_;
   bool use_magnetometer_;          // the field corrects after initialisation
   bool mekf_initialized_ = false;  // the MEKF's previous step had an attitude
   bool star_valid_ = false;        // the star tracker's sample of this step was usable
@@ -62,7 +63,7 @@ class EstimatorNode final : public bus::Component {
   std::optional<Eigen::Vector3d> previous_w_B_rad_s_;  // [rad/s] gyro rate of the previous step
 
   void stepS0(const bus::StepContext& ctx, const msg::GyroReading& gyro, const Eigen::Vector3d& sun_B_unit,
-              bool sun_valid, const ReferenceVectors& reference);
+              bool sun_valid, const onboard::ReferenceVectors& reference);
   std::optional<S0Estimator> s0_;
   double jd_epoch_utc_;
   bus::InputOf<bus::topics::kWheelTach>* tach_ = nullptr;           // S0
@@ -73,9 +74,8 @@ class EstimatorNode final : public bus::Component {
   bus::WriterOf<bus::topics::kFieldEstimate>& field_estimate_ = addOutput(bus::topics::kFieldEstimate);
 };
 
-/// components.<name>, plus the onboard orbit and field knowledge from the
-/// plant sections.
-EstimatorNodeParams readParams(const bus::Scenario& scenario, const bus::NodeArgs& args,
-                               bus::ConfigProblems& problems);
+/// The estimator's section, over the vehicle's onboard view.
+EstimatorNodeParams readParams(const bus::Scenario& scenario, const vehicle::Vehicle& vehicle,
+                               const bus::NodeArgs& args, bus::ConfigProblems& problems);
 
 }  // namespace flatsat::estimator

@@ -13,6 +13,7 @@
 #include "bus/Stamp.hpp"
 #include "components/Processes.hpp"
 #include "components/magnetometer_bridge/SerialPort.hpp"
+#include "vehicle/VehicleReader.hpp"
 
 namespace flatsat::magnetometer_bridge {
 
@@ -87,14 +88,14 @@ std::string defaultDevicePath(const bus::NodeArgs& args) {
   return (std::filesystem::path(args.out_dir.empty() ? "." : args.out_dir) / "magnetometer.pty").string();
 }
 
-MagnetometerBridgeNodeParams readParams(const bus::Scenario& scenario, const bus::NodeArgs& args,
-                                        bus::ConfigProblems& problems) {
+MagnetometerBridgeNodeParams readParams(const bus::Scenario& scenario, const vehicle::Vehicle& vehicle,
+                                        const bus::NodeArgs& args, bus::ConfigProblems& problems) {
   MagnetometerBridgeNodeParams p;
+  p.bridge.q_body_sensor = vehicle.onboard.sensors.q_body_magnetometer;  // flight software's belief
   p.device = defaultDevicePath(args);
   auto r = scenario.componentParams(args.name, problems);
   r.read("device", p.device);
   r.read("baud", p.baud);
-  r.read("q_body_sensor", p.bridge.q_body_sensor);
   r.read("range_T", p.bridge.range_T, "T");
   if (p.baud != 9600 && p.baud != 19200 && p.baud != 38400 && p.baud != 57600 && p.baud != 115200) {
     r.problem("baud", "must be 9600, 19200, 38400, 57600 or 115200");
@@ -105,7 +106,7 @@ MagnetometerBridgeNodeParams readParams(const bus::Scenario& scenario, const bus
 }
 
 int runProcess(int argc, char** argv) {
-  return bus::runNodeOf<MagnetometerBridgeNode>(argc, argv, "magnetometer_bridge", readParams,
+  return bus::runNodeOf<MagnetometerBridgeNode>(argc, argv, "magnetometer_bridge", vehicle::withVehicle(readParams),
                                                 bus::kBridgeStrength);
 }
 

@@ -8,6 +8,7 @@
 #include "bus/Node.hpp"
 #include "bus/NodeMain.hpp"
 #include "components/magnetometer_bridge/MagnetometerBridge.hpp"
+#include "vehicle/VehicleDescription.hpp"
 
 namespace flatsat::magnetometer_bridge {
 
@@ -50,8 +51,8 @@ class MagnetometerBridgeNode final : public bus::Node {
   bus::WriterOf<bus::topics::kMagnetometer>& reading_ = addOutput(bus::topics::kMagnetometer);
 };
 
-MagnetometerBridgeNodeParams readParams(const bus::Scenario& scenario, const bus::NodeArgs& args,
-                                        bus::ConfigProblems& problems);
+MagnetometerBridgeNodeParams readParams(const bus::Scenario& scenario, const vehicle::Vehicle& vehicle,
+                                        const bus::NodeArgs& args, bus::ConfigProblems& problems);
 
 /// The pseudo-terminal path bridge and device simulator agree on by default.
 std::string defaultDevicePath(const bus::NodeArgs& args);

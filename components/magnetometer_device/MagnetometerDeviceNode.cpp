@@ -18,6 +18,7 @@
 #include "components/Processes.hpp"
 #include "components/magnetometer_bridge/MagnetometerBridgeNode.hpp"
 #include "components/magnetometer_bridge/SerialPort.hpp"
+#include "vehicle/VehicleReader.hpp"
 
 namespace flatsat::magnetometer_device {
 
@@ -88,15 +89,15 @@ void MagnetometerDeviceNode::run() {
   publishHealth(msg::ComponentState::STOPPED, sent_, "stopped");
 }
 
-MagnetometerDeviceParams readParams(const bus::Scenario& scenario, const bus::NodeArgs& args,
-                                    bus::ConfigProblems& problems) {
+MagnetometerDeviceParams readParams(const bus::Scenario& scenario, const vehicle::Vehicle& vehicle,
+                                    const bus::NodeArgs& args, bus::ConfigProblems& problems) {
   MagnetometerDeviceParams p;
+  p.mounting.q_body_sensor = vehicle.truth.sensors.q_body_magnetometer;  // as the unit sits
   p.link = magnetometer_bridge::defaultDevicePath(args);
   p.seed = scenario.seedFor(args.name);
   auto r = scenario.componentParams(args.name, problems);
   r.read("link", p.link);
   r.read("baud", p.baud);
-  r.read("q_body_sensor", p.mounting.q_body_sensor);
   r.read("range_T", p.mounting.range_T, "T");
   r.read("noise_T", p.noise_T, "T");
   r.read("truth_divider", p.truth_divider);
@@ -112,7 +113,7 @@ MagnetometerDeviceParams readParams(const bus::Scenario& scenario, const bus::No
 }
 
 int runProcess(int argc, char** argv) {
-  return bus::runNodeOf<MagnetometerDeviceNode>(argc, argv, "magnetometer_device", readParams);
+  return bus::runNodeOf<MagnetometerDeviceNode>(argc, argv, "magnetometer_device", vehicle::withVehicle(readParams));
 }
 
 }  // namespace flatsat::magnetometer_device

@@ -8,6 +8,7 @@
 #include "bus/Node.hpp"
 #include "bus/NodeMain.hpp"
 #include "components/magnetometer_bridge/MagnetometerBridge.hpp"
+#include "vehicle/VehicleDescription.hpp"
 
 namespace flatsat::magnetometer_device {
 
@@ -44,7 +45,7 @@ class MagnetometerDeviceNode final : public bus::Node {
   bus::ReaderOf<bus::topics::kTruth> truth_;
 };
 
-MagnetometerDeviceParams readParams(const bus::Scenario& scenario, const bus::NodeArgs& args,
-                                    bus::ConfigProblems& problems);
+MagnetometerDeviceParams readParams(const bus::Scenario& scenario, const vehicle::Vehicle& vehicle,
+                                    const bus::NodeArgs& args, bus::ConfigProblems& problems);
 
 }  // namespace flatsat::magnetometer_device

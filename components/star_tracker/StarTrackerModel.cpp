@@ -20,6 +20,9 @@ double angle(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
 std::vector<std::string> StarTrackerParams::validate() const {
   std::vector<std::string> e;
   if (!(std::abs(q_body_sensor.norm() - 1.0) < 1e-6)) e.push_back("q_body_sensor: must be a unit quaternion");
+  if (q_body_sensor_onboard && !(std::abs(q_body_sensor_onboard->norm() - 1.0) < 1e-6)) {
+    e.push_back("q_body_sensor_onboard: must be a unit quaternion");
+  }
   if (!(noise_cross_rad >= 0.0 && std::isfinite(noise_cross_rad))) e.push_back("noise_cross_rad: must be >= 0");
   if (!(noise_about_rad >= 0.0 && std::isfinite(noise_about_rad))) e.push_back("noise_about_rad: must be >= 0");
   if (!(max_rate_rad_s > 0.0 && std::isfinite(max_rate_rad_s))) e.push_back("max_rate_rad_s: must be > 0");
@@ -31,7 +34,14 @@ std::vector<std::string> StarTrackerParams::validate() const {
 StarTrackerModel::StarTrackerModel(const Params& params)
     : params_(validated(params, "star tracker")),
       R_BS_(params.q_body_sensor.normalized().toRotationMatrix()),
-      noise_(params.seed) {}
+      noise_(params.seed) {
+  // The unit reports q_NS ⊗ n_S (n: its noise); flight software takes
+  // q_NB_measured = q_NS ⊗ n_S ⊗ q_BS_onboard⁻¹ = q_NB ⊗ n_B ⊗ (q_BS ⊗ q_BS_onboard⁻¹), n_B = q_BS ⊗ n_S ⊗ q_BS⁻¹.
+  const auto& onboard = params.q_body_sensor_onboard;
+  if (onboard && !onboard->coeffs().isApprox(params.q_body_sensor.coeffs(), 0.0)) {
+    misalignment_ = (params.q_body_sensor.normalized() * onboard->normalized().conjugate()).normalized();
+  }
+}
 
 void StarTrackerModel::reset() { noise_.reset(); }
 
@@ -41,6 +51,10 @@ StarTrackerOutput StarTrackerModel::step(const Input& in, std::int64_t) {
   const Eigen::Vector3d error_S{noise_.sample(params_.noise_cross_rad), noise_.sample(params_.noise_cross_rad),
                                 noise_.sample(params_.noise_about_rad)};
   out.error_B_rad = R_BS_ * error_S;
+  if (misalignment_) {
+    const Eigen::AngleAxisd total(applyError(Eigen::Quaterniond::Identity(), out.error_B_rad) * *misalignment_);
+    out.error_B_rad = total.angle() * total.axis();
+  }
 
   const Eigen::Vector3d boresight_B = R_BS_.col(2);
   const Eigen::Vector3d nadir_B = out.q_NB_true.conjugate() * (-in.r_N_m.normalized());

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,10 @@ namespace flatsat::star_tracker {
 /// Earth limb exclusion ~20-30°, tracking up to a few deg/s).
 struct StarTrackerParams {
   Eigen::Quaterniond q_body_sensor = Eigen::Quaterniond::Identity();  // [-] sensor → body; the boresight is sensor +z
+  /// [-] unit; the mounting the unit's configuration turns its attitude into body axes with
+  /// (the vehicle's onboard view); nullopt: q_body_sensor. A wrong one rotates every solution
+  /// by q_body_sensor ⊗ q_body_sensor_onboard⁻¹ in body axes.
+  std::optional<Eigen::Quaterniond> q_body_sensor_onboard;
   double noise_cross_rad = 2.0e-5;         // [rad] 1σ about each axis across the boresight (4 arcsec), >= 0
   double noise_about_rad = 1.5e-4;         // [rad] 1σ about the boresight (30 arcsec), >= 0
   double max_rate_rad_s = 0.035;           // [rad/s] no solution above this body rate (2 deg/s), > 0
@@ -69,6 +74,7 @@ class StarTrackerModel {
   Params params_;
   Eigen::Matrix3d R_BS_;
   GaussianNoise noise_;
+  std::optional<Eigen::Quaterniond> misalignment_;  // q_BS_true ⊗ q_BS_onboard⁻¹, when they differ
 };
 
 /// [-] measured attitude: q ⊗ exp(error/2) (Hamilton, body-axis error).

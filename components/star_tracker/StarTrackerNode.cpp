@@ -2,14 +2,16 @@
 #include "components/star_tracker/StarTrackerNode.hpp"
 
 #include "components/Processes.hpp"
+#include "vehicle/VehicleReader.hpp"
 
 namespace flatsat::star_tracker {
 
-EmulatorParams<StarTrackerParams> readParams(const bus::Scenario& scenario, const bus::NodeArgs& args,
-                                             bus::ConfigProblems& problems) {
+EmulatorParams<StarTrackerParams> readParams(const bus::Scenario& scenario, const vehicle::Vehicle& vehicle,
+                                             const bus::NodeArgs& args, bus::ConfigProblems& problems) {
   return readEmulatorParams<StarTrackerParams>(
       scenario, args.name, 3, "rad", problems, [&](bus::ParamReader& r, StarTrackerParams& m) {
-        r.read("q_body_sensor", m.q_body_sensor);
+        m.q_body_sensor = vehicle.truth.sensors.q_body_star_tracker;
+        m.q_body_sensor_onboard = vehicle.onboard.sensors.q_body_star_tracker;
         r.read("noise_cross_rad", m.noise_cross_rad, "rad");
         r.read("noise_about_rad", m.noise_about_rad, "rad");
         r.read("max_rate_rad_s", m.max_rate_rad_s, "rad/s");
@@ -19,7 +21,7 @@ EmulatorParams<StarTrackerParams> readParams(const bus::Scenario& scenario, cons
 }
 
 int runProcess(int argc, char** argv) {
-  return bus::runNodeOf<StarTrackerNode>(argc, argv, "star_tracker", readParams);
+  return bus::runNodeOf<StarTrackerNode>(argc, argv, "star_tracker", vehicle::withVehicle(readParams));
 }
 
 }  // namespace flatsat::star_tracker

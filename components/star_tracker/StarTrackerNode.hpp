@@ -4,6 +4,7 @@
 #include "bus/NodeMain.hpp"
 #include "components/common/EmulatorNode.hpp"
 #include "components/star_tracker/StarTrackerModel.hpp"
+#include "vehicle/VehicleDescription.hpp"
 
 namespace flatsat::star_tracker {
 
@@ -23,9 +24,10 @@ inline msg::StarTrackerReading toMessage(const StarTrackerOutput& out) {
 using StarTrackerNode = EmulatorNode<StarTrackerModel, bus::topics::kStarTracker, toInput, toMessage,
                                      &StarTrackerOutput::error_B_rad>;
 
-/// components.<name> of the scenario.
-EmulatorParams<StarTrackerParams> readParams(const bus::Scenario& scenario, const bus::NodeArgs& args,
-                                             bus::ConfigProblems& problems);
+/// components.<name> of the scenario; the mounting is the vehicle's, as it is (truth)
+/// and as the unit's configuration turns its attitude into body axes (onboard).
+EmulatorParams<StarTrackerParams> readParams(const bus::Scenario& scenario, const vehicle::Vehicle& vehicle,
+                                             const bus::NodeArgs& args, bus::ConfigProblems& problems);
 
 }  // namespace flatsat::star_tracker
 

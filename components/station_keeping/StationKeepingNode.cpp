@@ -10,7 +10,7 @@
 #include "bus/Stamp.hpp"
 #include "components/Processes.hpp"
 #include "sim/Constants.hpp"
-#include "sim/DynamicsServerParams.hpp"
+#include "vehicle/VehicleReader.hpp"
 #include "sim/SunEphemeris.hpp"
 #include "sim/Time.hpp"
 
@@ -116,13 +116,11 @@ void StationKeepingNode::step(const bus::StepContext& ctx) {
   plan_out_.write(message);
 }
 
-StationKeepingNodeParams readParams(const bus::Scenario& scenario, const bus::NodeArgs& args,
-                                    bus::ConfigProblems& problems) {
-  bus::ConfigProblems reported_by_dynamics_server;
-  const auto server = sim::readDynamicsServerParams(scenario, "dynamics_server", reported_by_dynamics_server);
-  const sim::DynamicsParams& plant = server.dynamics;
+StationKeepingNodeParams readParams(const bus::Scenario& scenario, const vehicle::Vehicle& vehicle,
+                                    const bus::NodeArgs& args, bus::ConfigProblems& problems) {
+  const vehicle::VehicleDescription& known = vehicle.onboard;  // flight software sees only this
   StationKeepingNodeParams p;
-  p.jd_epoch = sim::julianDate(plant.epoch);
+  p.jd_epoch = sim::julianDate(known.epoch);
   p.step_s = scenario.componentStep_s(args.name);
   auto r = scenario.componentParams(args.name, problems);
   StationKeepingParams& k = p.planner;
@@ -140,37 +138,32 @@ StationKeepingNodeParams readParams(const bus::Scenario& scenario, const bus::No
   r.read("mean_elements_window_s", p.mean_elements.window_s, "s");
   r.read("dump_dv_m_s", p.dump_dv_m_s, "m/s");
   if (!(p.dump_dv_m_s >= 0.0 && p.dump_dv_m_s <= 1.0)) r.problem("dump_dv_m_s", "outside [0, 1] m/s");
-  k.mass_kg = plant.orbit_track.forces.mass_kg;
-  if (plant.orbit_track.propagator != sim::OrbitPropagation::kNumerical) {
-    r.problem("", "needs orbit.propagator: numerical (the thrust must move the orbit)");
-  }
-  if (!plant.attitude_held) {
-    r.problem("", "needs components.dynamics_server.attitude: held_east_north_zenith (the thrusters' frame)");
-  }
+  k.mass_kg = known.orbit_track.forces.mass_kg;
   // The plant's thrusters must be the seed's six, in numbering order, with the
   // cant and slew the plan assumes (thrust lines through the CM).
-  if (plant.thrusters.size() != kGeoThrusters.size()) {
+  if (known.thrusters.size() != kGeoThrusters.size()) {
     r.problem("", "needs spacecraft.thrusters to be the seed's six (NW, NC, NE, SW, SC, SE), not " +
-                      std::to_string(plant.thrusters.size()));
+                      std::to_string(known.thrusters.size()));
   } else if (validate(k.thrusters).empty()) {
-    k.thrust_N = plant.thrusters.front().thrust_N;
+    k.thrust_N = known.thrusters.front().thrust_N;
     for (int i = 0; i < 6; ++i) {
       const Eigen::Vector3d expected = forceDirection_orbital(thrusterAt(i), k.thrusters);
-      if ((plant.thrusters[i].direction_B - expected).norm() > 1e-3) {
+      if ((known.thrusters[i].direction_B - expected).norm() > 1e-3) {
         r.problem("cant_rad", "spacecraft.thrusters[" + std::to_string(i) + "] is not " + nameOf(thrusterAt(i)) +
                                   " at this cant and slew (force direction east, north, zenith expected " +
                                   std::to_string(expected.x()) + ", " + std::to_string(expected.y()) + ", " +
                                   std::to_string(expected.z()) + ")");
       }
-      if (plant.thrusters[i].thrust_N != k.thrust_N) {
+      if (known.thrusters[i].thrust_N != k.thrust_N) {
         r.problem("", "spacecraft.thrusters[" + std::to_string(i) + "]: the six must have one thrust_N");
       }
     }
   }
-  for (const auto& fault : server.faults) {
+  // The failures fault management has declared (the truth's unless onboard.faults says otherwise).
+  for (const auto& fault : known.faults) {
     if (fault.kind != sim::ActuatorFaultKind::kThrusterFailed) continue;
     if (fault.channel < 0 || fault.channel >= static_cast<int>(kGeoThrusters.size())) {
-      r.problem("", "components.dynamics_server.faults: thruster_failed on channel " + std::to_string(fault.channel) +
+      r.problem("", "spacecraft.faults: thruster_failed on channel " + std::to_string(fault.channel) +
                         " takes out more than one power-unit pair (Table I has rows for one)");
       continue;
     }
@@ -183,7 +176,7 @@ StationKeepingNodeParams readParams(const bus::Scenario& scenario, const bus::No
 }
 
 int runProcess(int argc, char** argv) {
-  return bus::runNodeOf<StationKeepingNode>(argc, argv, "station_keeping", readParams);
+  return bus::runNodeOf<StationKeepingNode>(argc, argv, "station_keeping", vehicle::withVehicle(readParams));
 }
 
 }  // namespace flatsat::station_keeping

@@ -9,6 +9,7 @@
 #include "bus/NodeMain.hpp"
 #include "components/station_keeping/MeanElements.hpp"
 #include "components/station_keeping/StationKeepingPlanner.hpp"
+#include "vehicle/VehicleDescription.hpp"
 
 namespace flatsat::station_keeping {
 
@@ -65,7 +66,7 @@ class StationKeepingNode final : public bus::Component {
 /// thrusters' cant and slew (checked against spacecraft.thrusters, which must
 /// be the six of the seed in the order NW, NC, NE, SW, SC, SE), thrust and mass
 /// from spacecraft, the epoch from orbit.
-StationKeepingNodeParams readParams(const bus::Scenario& scenario, const bus::NodeArgs& args,
-                                    bus::ConfigProblems& problems);
+StationKeepingNodeParams readParams(const bus::Scenario& scenario, const vehicle::Vehicle& vehicle,
+                                    const bus::NodeArgs& args, bus::ConfigProblems& problems);
 
 }  // namespace flatsat::station_keeping

@@ -15,6 +15,7 @@ namespace flatsat::sun_sensor {
 std::vector<std::string> SunSensorParams::validate() const {
   std::vector<std::string> errors;
   requireUnit(errors, "boresight_B", boresight_B);
+  if (boresight_onboard_B) requireUnit(errors, "boresight_onboard_B", *boresight_onboard_B);
   requireNonNegative(errors, "noise_rad", noise_rad);
   // Below π/2 because the transverse angles are rebuilt through their tangents.
   require(errors, fov_half_angle_rad > 0.0 && fov_half_angle_rad < std::numbers::pi / 2.0,
@@ -52,6 +53,9 @@ SunSensorModel::SunSensorModel(const Params& params)
       message += " " + e + ";";
     }
     throw std::invalid_argument(message);
+  }
+  if (params_.boresight_onboard_B && *params_.boresight_onboard_B != params_.boresight_B) {
+    misknown_mounting_ = Eigen::Quaterniond::FromTwoVectors(params_.boresight_B, *params_.boresight_onboard_B);
   }
   params_.boresight_B.normalize();
   t1_B_ = params_.boresight_B.unitOrthogonal();
@@ -111,6 +115,8 @@ SunSensorOutput SunSensorModel::step(const Input& in, std::int64_t /*t_ns*/) {
   const double beta = std::clamp(std::atan2(s.dot(t2_B_), along) + angle_noise_rad.y(), -fov, fov);
   out.sun_B_unit =
       (params_.boresight_B + std::tan(alpha) * t1_B_ + std::tan(beta) * t2_B_).normalized();
+  // The angles are turned into body axes on the mounting flight software believes.
+  if (misknown_mounting_) out.sun_B_unit = *misknown_mounting_ * out.sun_B_unit;
   out.valid = true;
   return out;
 }

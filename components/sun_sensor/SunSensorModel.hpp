@@ -8,6 +8,7 @@
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include "components/common/GaussianNoise.hpp"
 #include "sim/Albedo.hpp"
@@ -37,6 +38,10 @@ struct SunSensorParams {
   double cell_noise = 0.005;  // [-] 1σ of each cell's output; 1 = the Sun at normal incidence at 1 AU, >= 0
   double min_output = 0.5;    // [-] estimated Sun strength below this: no Sun (eclipse, albedo alone), > 0
   std::optional<sim::AlbedoParams> albedo;  // [-] Earth albedo on the cells; nullopt: none
+  /// [-] unit; the boresight flight software converts the angles with (the vehicle's onboard
+  /// mounting); nullopt: boresight_B. A fine sensor's measured direction is turned by the
+  /// rotation that takes boresight_B onto it (a mounting known wrongly).
+  std::optional<Eigen::Vector3d> boresight_onboard_B;
 
   /// Every violation as "field: reason"; empty when valid.
   std::vector<std::string> validate() const;
@@ -96,6 +101,7 @@ class SunSensorModel {
   Eigen::Vector3d t2_B_;
   double cos_fov_;
   GaussianNoise noise_;
+  std::optional<Eigen::Quaterniond> misknown_mounting_;  // boresight_B onto boresight_onboard_B, when they differ
 };
 
 }  // namespace flatsat::sun_sensor

@@ -2,14 +2,16 @@
 #include "components/sun_sensor/SunSensorNode.hpp"
 
 #include "components/Processes.hpp"
+#include "vehicle/VehicleReader.hpp"
 
 namespace flatsat::sun_sensor {
 
-EmulatorParams<SunSensorParams> readParams(const bus::Scenario& scenario, const bus::NodeArgs& args,
-                              bus::ConfigProblems& problems) {
+EmulatorParams<SunSensorParams> readParams(const bus::Scenario& scenario, const vehicle::Vehicle& vehicle,
+                                           const bus::NodeArgs& args, bus::ConfigProblems& problems) {
   return readEmulatorParams<SunSensorParams>(
       scenario, args.name, 3, "-", problems, [&](bus::ParamReader& r, SunSensorParams& m) {
-    r.read("boresight_body", m.boresight_B, "-");
+    m.boresight_B = vehicle.truth.sensors.sun_sensor_boresight_B;
+    m.boresight_onboard_B = vehicle.onboard.sensors.sun_sensor_boresight_B;
     r.read("noise_rad", m.noise_rad, "rad");
     r.read("fov_half_angle_rad", m.fov_half_angle_rad, "rad");
     r.read("min_illumination", m.min_illumination, "-");
@@ -43,7 +45,7 @@ EmulatorParams<SunSensorParams> readParams(const bus::Scenario& scenario, const 
 }
 
 int runProcess(int argc, char** argv) {
-  return bus::runNodeOf<SunSensorNode>(argc, argv, "sun_sensor", readParams);
+  return bus::runNodeOf<SunSensorNode>(argc, argv, "sun_sensor", vehicle::withVehicle(readParams));
 }
 
 }  // namespace flatsat::sun_sensor

@@ -5,6 +5,7 @@
 #include "components/common/EmulatorNode.hpp"
 #include "components/sun_sensor/SunSensorModel.hpp"
 #include "sim/PanelModel.hpp"
+#include "vehicle/VehicleDescription.hpp"
 
 namespace flatsat::sun_sensor {
 
@@ -25,9 +26,10 @@ inline msg::SunSensorReading toMessage(const SunSensorOutput& out) {
 using SunSensorNode =
     EmulatorNode<SunSensorModel, bus::topics::kSunSensor, toInput, toMessage, &SunSensorOutput::sun_B_unit>;
 
-/// components.<name> of the scenario.
-EmulatorParams<SunSensorParams> readParams(const bus::Scenario& scenario, const bus::NodeArgs& args,
-                           bus::ConfigProblems& problems);
+/// components.<name> of the scenario; the boresight is the vehicle's mounting, as it
+/// is (truth) and as flight software converts with it (onboard).
+EmulatorParams<SunSensorParams> readParams(const bus::Scenario& scenario, const vehicle::Vehicle& vehicle,
+                                           const bus::NodeArgs& args, bus::ConfigProblems& problems);
 
 }  // namespace flatsat::sun_sensor
 

@@ -5,8 +5,7 @@
 #include "components/Processes.hpp"
 #include "components/common/StateJson.hpp"
 #include "components/station_keeping/FiringTable.hpp"
-#include "components/sun_sensor/SunSensorNode.hpp"
-#include "sim/DynamicsServerParams.hpp"
+#include "vehicle/VehicleReader.hpp"
 
 namespace flatsat::thruster_sequencer {
 
@@ -166,10 +165,9 @@ void ThrusterSequencerNode::step(const bus::StepContext& ctx) {
   command_.write(message);
 }
 
-ThrusterSequencerParams readParams(const bus::Scenario& scenario, const bus::NodeArgs& args,
-                                   bus::ConfigProblems& problems) {
-  bus::ConfigProblems reported_by_their_owners;  // the dynamics server and the Sun sensor
-  const auto plant = sim::readPlant(scenario, reported_by_their_owners);
+ThrusterSequencerParams readParams(const bus::Scenario& scenario, const vehicle::Vehicle& vehicle,
+                                   const bus::NodeArgs& args, bus::ConfigProblems& problems) {
+  const vehicle::VehicleDescription& known = vehicle.onboard;  // flight software sees only this
   const double step_s = scenario.componentStep_s(args.name);
   ThrusterSequencerParams p;
   auto r = scenario.componentParams(args.name, problems);
@@ -178,21 +176,19 @@ ThrusterSequencerParams readParams(const bus::Scenario& scenario, const bus::Nod
   if (mode == "momentum_dumping") {
     p.mode = ThrusterSequencerParams::Mode::kMomentumDumping;
     auto& d = p.dumping;
-    d.thrusters = plant.thrusters;
-    d.wheels = {plant.body.wheel_count, plant.body.wheel_axes_B, plant.body.wheel_inertia_kg_m2};
+    d.thrusters = known.thrusters;
+    d.wheels = wheelGeometryOf(known.body);
     d.step_s = step_s;
     if (!scenario.hasComponent("wheel_tach")) r.problem("mode", "momentum_dumping needs a wheel_tach in the rig");
     readDumping(r, d);
     r.problems(d.validate());
   } else if (mode == "angle_only") {
     auto& a = p.angle_only;
-    a.thrusters = plant.thrusters;
-    a.inertia_B_kg_m2 = plant.body.J_B_kg_m2;
+    a.thrusters = known.thrusters;
+    a.inertia_B_kg_m2 = known.body.J_B_kg_m2;
     a.step_s = step_s;
-    if (scenario.hasComponent("sun_sensor")) {
-      a.boresight_B = sun_sensor::readParams(scenario, {args.scenario, "sun_sensor", ""}, reported_by_their_owners)
-                          .model.boresight_B;
-    } else {
+    a.boresight_B = known.sensors.sun_sensor_boresight_B;
+    if (!scenario.hasComponent("sun_sensor")) {
       r.problem("", "needs a sun_sensor in the rig (its angle is the only input)");
     }
     readAngleOnly(r, a);
@@ -201,13 +197,13 @@ ThrusterSequencerParams readParams(const bus::Scenario& scenario, const bus::Nod
     p.mode = ThrusterSequencerParams::Mode::kStationKeeping;
     auto& k = p.station_keeping;
     k.step_s = step_s;
-    k.thruster_count = static_cast<int>(plant.thrusters.size());
+    k.thruster_count = static_cast<int>(known.thrusters.size());
     if (!scenario.hasComponent("station_keeping")) r.problem("mode", "station_keeping needs a station_keeping planner in the rig");
     r.problems(k.validate());
-    if (plant.body.wheel_count > 0 && scenario.hasComponent("wheel_tach")) {
+    if (known.body.wheel_count > 0 && scenario.hasComponent("wheel_tach")) {
       GimbalDumpingParams g;
-      g.thrusters = plant.thrusters;
-      g.wheels = {plant.body.wheel_count, plant.body.wheel_axes_B, plant.body.wheel_inertia_kg_m2};
+      g.thrusters = known.thrusters;
+      g.wheels = wheelGeometryOf(known.body);
       r.read("dump_time_s", g.dump_time_s, "s");
       r.problems(g.validate());
       p.gimbal_dumping = g;
@@ -220,7 +216,7 @@ ThrusterSequencerParams readParams(const bus::Scenario& scenario, const bus::Nod
 }
 
 int runProcess(int argc, char** argv) {
-  return bus::runNodeOf<ThrusterSequencerNode>(argc, argv, "thruster_sequencer", readParams);
+  return bus::runNodeOf<ThrusterSequencerNode>(argc, argv, "thruster_sequencer", vehicle::withVehicle(readParams));
 }
 
 }  // namespace flatsat::thruster_sequencer

@@ -8,6 +8,7 @@
 #include "components/thruster_sequencer/GimbalDumping.hpp"
 #include "components/thruster_sequencer/StationKeepingFirings.hpp"
 #include "components/thruster_sequencer/ThrusterMomentumDumping.hpp"
+#include "vehicle/VehicleDescription.hpp"
 
 namespace flatsat::thruster_sequencer {
 
@@ -56,10 +57,10 @@ class ThrusterSequencerNode final : public bus::Component {
   Eigen::Vector4d last_speed_rad_s_ = Eigen::Vector4d::Zero();  // rides through tachometer dropouts
 };
 
-/// components.<name>: the mode and its parameters; the thruster table, inertia and wheels
-/// from spacecraft, the boresight from components.sun_sensor, the step from step_s and
+/// components.<name>: the mode and its parameters; the thrusters, inertia, wheels and
+/// the Sun sensor's boresight from the vehicle's onboard view, the step from step_s and
 /// the rate divider.
-ThrusterSequencerParams readParams(const bus::Scenario& scenario, const bus::NodeArgs& args,
-                                   bus::ConfigProblems& problems);
+ThrusterSequencerParams readParams(const bus::Scenario& scenario, const vehicle::Vehicle& vehicle,
+                                   const bus::NodeArgs& args, bus::ConfigProblems& problems);
 
 }  // namespace flatsat::thruster_sequencer

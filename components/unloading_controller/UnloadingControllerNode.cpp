@@ -8,9 +8,9 @@
 
 #include "bus/Convert.hpp"
 #include "components/Processes.hpp"
-#include "components/common/ReferenceParams.hpp"
-#include "sim/DynamicsServerParams.hpp"
+#include "components/common/onboard/ReferenceParams.hpp"
 #include "sim/KeplerOrbit.hpp"
+#include "vehicle/VehicleReader.hpp"
 
 namespace flatsat::unloading_controller {
 
@@ -78,19 +78,19 @@ void readMode(bus::ParamReader& r, const std::string& key, std::optional<Magneti
 }
 
 /// The `aero:` section (seed S2) and what the split needs to know of the flaps.
-void readAero(bus::ParamReader& r, const sim::DynamicsParams& plant, UnloadingControllerNodeParams& node) {
+void readAero(bus::ParamReader& r, const vehicle::VehicleDescription& known, UnloadingControllerNodeParams& node) {
   if (!r.has("aero")) return;
   auto a = r.section("aero");
-  if (!plant.flaps.fitted) {
+  if (!known.flaps.fitted) {
     a.problem("split", "spacecraft.flaps is not fitted: no flaps to split the torque with");
   }
-  node.flaps = FlapKnowledge{plant.flaps.plate_area_m2, plant.flaps.lever_arm_m, plant.atmosphere,
-                             plant.density_kg_m3};
+  node.flaps = FlapKnowledge{known.flaps.plate_area_m2, known.flaps.lever_arm_m, known.atmosphere,
+                             known.density_kg_m3};
   AeroAllocationParams p;
   p.max_dipole_Am2 = node.modes.unload.max_dipole_Am2;
   p.min_field_T = node.modes.unload.min_field_T;
-  // The plant's limit, and never past asin √(2/3), where a plate's roll torque peaks.
-  p.flaps.max_angle_rad = std::min(plant.flaps.max_angle_rad, p.flaps.max_angle_rad);
+  // The flaps' limit, and never past asin √(2/3), where a plate's roll torque peaks.
+  p.flaps.max_angle_rad = std::min(known.flaps.max_angle_rad, p.flaps.max_angle_rad);
   std::string split = "magnetic_aero";
   a.read("split", split);
   if (const auto parsed = aeroSplitFromName(split)) {
@@ -223,7 +223,7 @@ void UnloadingControllerNode::step(const bus::StepContext& ctx) {
   publishFlaps(ctx, in, out);
 }
 
-double UnloadingControllerNode::flapScale_Nm(const estimator::ReferenceVectors& reference) const {
+double UnloadingControllerNode::flapScale_Nm(const onboard::ReferenceVectors& reference) const {
   const double speed2 = sim::velocityThroughAir_N_m_s(reference.r_N_m, reference.v_N_m_s).squaredNorm();
   const double density = atmosphere_ ? atmosphere_->density_kg_m3(reference.r_N_m, reference.sun_N_unit)
                                      : flaps_->density_kg_m3;
@@ -252,17 +252,16 @@ void UnloadingControllerNode::publishFlaps(const bus::StepContext& ctx, const Ma
   flap_cmd_.write(m);
 }
 
-UnloadingControllerNodeParams readParams(const bus::Scenario& scenario, const bus::NodeArgs& args,
-                                         bus::ConfigProblems& problems) {
-  bus::ConfigProblems reported_by_dynamics_server;
-  const auto plant = sim::readPlant(scenario, reported_by_dynamics_server);
+UnloadingControllerNodeParams readParams(const bus::Scenario& scenario, const vehicle::Vehicle& vehicle,
+                                         const bus::NodeArgs& args, bus::ConfigProblems& problems) {
+  const vehicle::VehicleDescription& known = vehicle.onboard;  // flight software sees only this
   UnloadingControllerNodeParams node;
   MagneticModesParams& p = node.modes;
   CrossProductUnloadingParams& u = p.unload;
-  u.wheels = {plant.body.wheel_count, plant.body.wheel_axes_B, plant.body.wheel_inertia_kg_m2};
-  u.max_dipole_Am2 = plant.torquer_max_dipole_Am2;
-  p.detumble.max_dipole_Am2 = plant.torquer_max_dipole_Am2;
-  if (plant.orbit.validate().empty()) p.spin.orbit_rate_rad_s = sim::KeplerOrbit(plant.orbit).meanMotion_rad_s();
+  u.wheels = wheelGeometryOf(known.body);
+  u.max_dipole_Am2 = known.torquer_max_dipole_Am2;
+  p.detumble.max_dipole_Am2 = known.torquer_max_dipole_Am2;
+  if (known.orbit.validate().empty()) p.spin.orbit_rate_rad_s = sim::KeplerOrbit(known.orbit).meanMotion_rad_s();
 
   auto r = scenario.componentParams(args.name, problems);
   r.read("enabled", u.enabled);
@@ -305,8 +304,8 @@ UnloadingControllerNodeParams readParams(const bus::Scenario& scenario, const bu
     s.problem("field_turn", "'" + field_turn + "' is neither orbit_rate nor model");
   }
   s.finish();
-  const auto onboard = readReferenceModel(r, plant);
-  readAero(r, plant, node);
+  const auto reference = onboard::referenceModelOf(known, onboard::readFieldNodeSpacing(r));
+  readAero(r, known, node);
 
   std::string source = "magnetometer";
   r.read("field_source", source);
@@ -322,7 +321,7 @@ UnloadingControllerNodeParams readParams(const bus::Scenario& scenario, const bu
     r.problem("field_source", "must be magnetometer, s0_estimate or model_attitude, not \"" + source + "\"");
   }
   if (p.spin.field_turn == FieldTurn::kModel || node.field_source == FieldSource::kModelAttitude || p.aero) {
-    node.onboard = onboard;
+    node.onboard = reference;
   }
   r.problems(p.validate());
   if (node.onboard) r.problems(node.onboard->validate());
@@ -331,7 +330,7 @@ UnloadingControllerNodeParams readParams(const bus::Scenario& scenario, const bu
 }
 
 int runProcess(int argc, char** argv) {
-  return bus::runNodeOf<UnloadingControllerNode>(argc, argv, "unloading_controller", readParams);
+  return bus::runNodeOf<UnloadingControllerNode>(argc, argv, "unloading_controller", vehicle::withVehicle(readParams));
 }
 
 }  // namespace flatsat::unloading_controller

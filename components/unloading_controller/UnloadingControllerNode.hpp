@@ -10,9 +10,10 @@
 #include "bus/NodeMain.hpp"
 #include "components/common/LastValid.hpp"
 #include "components/unloading_controller/CoilArbiter.hpp"
-#include "components/estimator/ReferenceModel.hpp"
+#include "components/common/onboard/ReferenceModel.hpp"
 #include "components/unloading_controller/MagneticModes.hpp"
 #include "sim/Atmosphere.hpp"
+#include "vehicle/VehicleDescription.hpp"
 
 namespace flatsat::unloading_controller {
 
@@ -40,7 +41,7 @@ struct UnloadingControllerNodeParams {
   double quiet_fraction = 0.0;
   /// Onboard orbit and field model; set for kModelAttitude and when spin capture
   /// takes the field's turn from it.
-  std::optional<estimator::ReferenceModelParams> onboard;
+  std::optional<onboard::ReferenceModelParams> onboard;
   /// Set with modes.aero (the `aero:` section), which needs it and onboard for K.
   std::optional<FlapKnowledge> flaps;
 };
@@ -67,7 +68,7 @@ class UnloadingControllerNode final : public bus::Component {
   void step(const bus::StepContext& ctx) override;
   void receive(const msg::ModeCmd& command);
   /// [N m] K = 2ρA_pV²l with the air's velocity relative to the spacecraft from the onboard orbit.
-  double flapScale_Nm(const estimator::ReferenceVectors& reference) const;
+  double flapScale_Nm(const onboard::ReferenceVectors& reference) const;
   void publishFlaps(const bus::StepContext& ctx, const MagneticModesInput& in, const MagneticModesOutput& out);
 
   bus::InputOf<bus::topics::kWheelTach>& tach_ = addInput(bus::topics::kWheelTach);
@@ -89,7 +90,7 @@ class UnloadingControllerNode final : public bus::Component {
   bus::ParamCommands<MagneticModesParams> param_commands_;
   CoilArbiter arbiter_;
   double quiet_fraction_;
-  std::optional<estimator::ReferenceModel> onboard_;
+  std::optional<onboard::ReferenceModel> onboard_;
   std::optional<FlapKnowledge> flaps_;
   std::optional<sim::Atmosphere> atmosphere_;
 };
@@ -99,10 +100,10 @@ class UnloadingControllerNode final : public bus::Component {
 /// geometry from spacecraft.wheels, the coil limits from spacecraft.torquers
 /// and the orbital rate from the orbit; `field_source: magnetometer | s0_estimate |
 /// model_attitude`;
-/// the onboard models (`reference_field`, `reference_orbit`) for model_attitude
+/// the vehicle's onboard view (orbit and field knowledge) for model_attitude
 /// and `spin_capture.field_turn: model`; with spacecraft.flaps, an `aero:` section
 /// (seed S2: split, max_angle_rad, failed_flaps, drag_only_angle_rad).
-UnloadingControllerNodeParams readParams(const bus::Scenario& scenario, const bus::NodeArgs& args,
-                               bus::ConfigProblems& problems);
+UnloadingControllerNodeParams readParams(const bus::Scenario& scenario, const vehicle::Vehicle& vehicle,
+                                         const bus::NodeArgs& args, bus::ConfigProblems& problems);
 
 }  // namespace flatsat::unloading_controller

@@ -2,14 +2,13 @@
 #include "components/wheel_tach/WheelTachNode.hpp"
 
 #include "components/Processes.hpp"
-#include "sim/DynamicsServerParams.hpp"
+#include "vehicle/VehicleReader.hpp"
 
 namespace flatsat::wheel_tach {
 
-EmulatorParams<WheelTachParams> readParams(const bus::Scenario& scenario, const bus::NodeArgs& args,
-                              bus::ConfigProblems& problems) {
-  bus::ConfigProblems reported_by_dynamics_server;
-  const int wheels = sim::readPlant(scenario, reported_by_dynamics_server).body.wheel_count;
+EmulatorParams<WheelTachParams> readParams(const bus::Scenario& scenario, const vehicle::Vehicle& vehicle,
+                                           const bus::NodeArgs& args, bus::ConfigProblems& problems) {
+  const int wheels = vehicle.truth.body.wheel_count;  // an emulator measures what is there
   return readEmulatorParams<WheelTachParams>(
       scenario, args.name, 4, "rad/s", problems, [&](bus::ParamReader& r, WheelTachParams& m) {
     m.wheel_count = wheels;
@@ -19,7 +18,7 @@ EmulatorParams<WheelTachParams> readParams(const bus::Scenario& scenario, const 
 }
 
 int runProcess(int argc, char** argv) {
-  return bus::runNodeOf<WheelTachNode>(argc, argv, "wheel_tach", readParams);
+  return bus::runNodeOf<WheelTachNode>(argc, argv, "wheel_tach", vehicle::withVehicle(readParams));
 }
 
 }  // namespace flatsat::wheel_tach

@@ -4,6 +4,7 @@
 #include "bus/NodeMain.hpp"
 #include "components/common/EmulatorNode.hpp"
 #include "components/wheel_tach/WheelTachModel.hpp"
+#include "vehicle/VehicleDescription.hpp"
 
 namespace flatsat::wheel_tach {
 
@@ -21,9 +22,9 @@ inline msg::WheelTachReading toMessage(const WheelTachOutput& out) {
 using WheelTachNode =
     EmulatorNode<WheelTachModel, bus::topics::kWheelTach, toInput, toMessage, &WheelTachOutput::wheel_speed_rad_s>;
 
-/// components.<name> of the scenario; the wheel count comes from spacecraft.wheels.
-EmulatorParams<WheelTachParams> readParams(const bus::Scenario& scenario, const bus::NodeArgs& args,
-                           bus::ConfigProblems& problems);
+/// components.<name> of the scenario; the wheel count is the vehicle's (truth).
+EmulatorParams<WheelTachParams> readParams(const bus::Scenario& scenario, const vehicle::Vehicle& vehicle,
+                                           const bus::NodeArgs& args, bus::ConfigProblems& problems);
 
 }  // namespace flatsat::wheel_tach
 

@@ -20,6 +20,7 @@
 #include "components/Registry.hpp"
 #include "tests/support/SecuredBus.hpp"
 #include "tests/support/TestDomain.hpp"
+#include "vehicle/VehicleReader.hpp"
 
 namespace fs = std::filesystem;
 using namespace flatsat;
@@ -136,7 +137,7 @@ TEST_CASE("every component's code makes its endpoints under its own grant", "[co
       if (!scenario.hasComponent(kind.name)) continue;
       INFO(kind.name << " of " << scenario.file);
       std::optional<bus::Bus::WatchersHeld> held(std::in_place, bus);
-      CHECK_NOTHROW(kind.make(bus, bus::nodeOptions(scenario, kind.name), scenario,
+      CHECK_NOTHROW(kind.make(bus, bus::nodeOptions(scenario, kind.name), scenario, vehicle::vehicleOf(scenario),
                               {scenario.file, kind.name, out.string()}));
       held.reset();
     }

@@ -14,7 +14,7 @@
 #include <Eigen/Geometry>
 
 #include "components/estimator/Mekf.hpp"
-#include "components/estimator/ReferenceModel.hpp"
+#include "components/common/onboard/ReferenceModel.hpp"
 #include "components/gyro/GyroModel.hpp"
 #include "components/magnetometer/MagnetometerModel.hpp"
 #include "components/sun_sensor/SunSensorModel.hpp"
@@ -29,7 +29,7 @@ using flatsat::estimator::MeasurementUse;
 using flatsat::estimator::Mekf;
 using flatsat::estimator::MekfInput;
 using flatsat::estimator::MekfParams;
-using flatsat::estimator::ReferenceModel;
+using flatsat::onboard::ReferenceModel;
 
 namespace {
 
@@ -86,8 +86,8 @@ double chiSquareEvenQuantile(int dof, double p) {
   return lo;
 }
 
-flatsat::estimator::ReferenceModelParams orbitParams() {
-  flatsat::estimator::ReferenceModelParams p;
+flatsat::onboard::ReferenceModelParams orbitParams() {
+  flatsat::onboard::ReferenceModelParams p;
   p.epoch = {2026, 3, 20, 0, 0, 0.0};
   p.orbit.semi_major_axis_m = flatsat::sim::kEarthEquatorialRadius_m + 560e3;
   p.orbit.inclination_rad = 53.0 * kDeg;

@@ -7,15 +7,15 @@
 
 #include <catch2/catch.hpp>
 
-#include "components/estimator/ReferenceModel.hpp"
+#include "components/common/onboard/ReferenceModel.hpp"
 #include "sim/Constants.hpp"
 #include "sim/GeomagneticCoefficients.hpp"
 #include "tests/support/ReferenceData.hpp"
 #include "tests/support/TestUnits.hpp"
 
-using flatsat::estimator::ReferenceModel;
-using flatsat::estimator::ReferenceModelParams;
-using flatsat::estimator::ReferenceVectors;
+using flatsat::onboard::ReferenceModel;
+using flatsat::onboard::ReferenceModelParams;
+using flatsat::onboard::ReferenceVectors;
 
 namespace {
 

@@ -113,3 +113,29 @@ TEST_CASE("star tracker parameters are checked", "[star_tracker]") {
   CHECK(p.validate().size() == 2);
   CHECK_THROWS_AS(StarTrackerModel(p), std::invalid_argument);
 }
+
+TEST_CASE("star tracker on a mounting known wrongly reports the attitude rotated by the error", "[star_tracker]") {
+  // Mounted with identity, believed turned 0.1 deg about body x: the unit's
+  // q_NS, turned into body axes on the believed mounting, is the truth
+  // rotated by q_BS ⊗ q_BS_onboard⁻¹ = 0.1 deg about −x (noise off).
+  StarTrackerParams p;
+  p.noise_cross_rad = p.noise_about_rad = 0.0;
+  const double error_rad = 0.1 * kDeg;
+  p.q_body_sensor_onboard = Eigen::Quaterniond(Eigen::AngleAxisd(error_rad, Eigen::Vector3d::UnitX()));
+  StarTrackerModel model(p);
+  const auto out = model.step(clearSky(), 0);
+  REQUIRE(out.valid);
+  const Eigen::Vector3d e = errorOf(applyError(out.q_NB_true, out.error_B_rad), out.q_NB_true);
+  CHECK(e.x() == Approx(-error_rad).epsilon(1e-12));
+  CHECK(std::abs(e.y()) < 1e-15);
+  CHECK(std::abs(e.z()) < 1e-15);
+
+  // Believed exactly as mounted: the error is the noise alone, sample for sample.
+  StarTrackerParams known = p;
+  known.noise_cross_rad = 4 * kArcsec;
+  known.q_body_sensor_onboard = known.q_body_sensor;
+  StarTrackerParams plain = known;
+  plain.q_body_sensor_onboard.reset();
+  StarTrackerModel a(known), b(plain);
+  for (int i = 0; i < 10; ++i) CHECK(a.step(clearSky(), i).error_B_rad == b.step(clearSky(), i).error_B_rad);
+}

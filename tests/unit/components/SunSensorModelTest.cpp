@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -74,6 +75,26 @@ TEST_CASE("Sun sensor honours a boresight other than +x", "[components][sun_sens
   CHECK(out.valid);
   CHECK((out.sun_B_unit - sun).norm() < 1e-14);
   CHECK_FALSE(sensor.step({Eigen::Vector3d::UnitX(), 1.0}, 0).valid);  // 90° off −z
+}
+
+TEST_CASE("Sun sensor on a mounting known wrongly turns every reading by the error", "[components][sun_sensor]") {
+  // Mounted on +x, believed 2 deg towards +y: flight software converts the two
+  // angles on the believed axes, so every direction turns by 2 deg about z.
+  SunSensorParams p = noiseFree();
+  const double error_rad = 2.0 * kDeg;
+  p.boresight_onboard_B = Eigen::Vector3d(std::cos(error_rad), std::sin(error_rad), 0.0);
+  SunSensorModel sensor(p);
+  const Eigen::AngleAxisd believed(error_rad, Eigen::Vector3d::UnitZ());
+  for (const Eigen::Vector3d& sun : {Eigen::Vector3d(1.0, 0.0, 0.0), Eigen::Vector3d(0.9, 0.3, -0.2).normalized(),
+                                     offBoresight(40.0 * kDeg, Eigen::Vector3d(0.0, -1.0, 1.0))}) {
+    const auto out = sensor.step({sun, 1.0}, 0);
+    REQUIRE(out.valid);
+    CHECK((out.sun_B_unit - believed * sun).norm() < 1e-14);
+    CHECK(std::acos(std::clamp(out.sun_B_unit.dot(sun), -1.0, 1.0)) <= error_rad + 1e-12);
+  }
+  // The field of view is the true mounting's: 59 deg off +x is seen, 61 deg is not.
+  CHECK(sensor.step({offBoresight(59.0 * kDeg, Eigen::Vector3d::UnitZ()), 1.0}, 0).valid);
+  CHECK_FALSE(sensor.step({offBoresight(61.0 * kDeg, Eigen::Vector3d::UnitZ()), 1.0}, 0).valid);
 }
 
 TEST_CASE("Sun sensor angle noise has the set sigma on each axis", "[components][sun_sensor]") {

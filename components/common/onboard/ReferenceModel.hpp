@@ -5,21 +5,22 @@
 #include <string>
 #include <vector>
 
-#include <Eigen/Dense>
-
 #include <optional>
+
+#include <Eigen/Dense>
 
 #include "sim/GeomagneticField.hpp"
 #include "sim/KeplerOrbit.hpp"
 #include "sim/OrbitTrack.hpp"
 #include "sim/SphericalHarmonicField.hpp"
 #include "sim/Time.hpp"
+#include "vehicle/VehicleDescription.hpp"
 
-namespace flatsat::estimator {
+namespace flatsat::onboard {
 
-/// Onboard knowledge the estimator compares its sensors with: an orbit
-/// propagator, a field model and a Sun ephemeris (the same models the
-/// dynamics server uses, as an onboard computer would carry them).
+/// Onboard knowledge the flight components compare their sensors with: an
+/// orbit propagator, a field model and a Sun ephemeris, as an onboard computer
+/// carries them (the vehicle's onboard view: vehicle/VehicleDescription.hpp).
 struct ReferenceModelParams {
   sim::UtcEpoch epoch;               // scenario epoch (t = 0), UTC
   sim::OrbitElements orbit;          // onboard orbit knowledge at the epoch
@@ -35,6 +36,12 @@ struct ReferenceModelParams {
   std::vector<std::string> validate() const;
 };
 
+/// The reference model of a vehicle's onboard view: its epoch, orbit
+/// knowledge (a numerical propagator's drag from its density model) and field
+/// model (spherical harmonics to its degree, or the tilted dipole), with the
+/// field evaluated at nodes `field_node_s` [s] apart.
+ReferenceModelParams referenceModelOf(const vehicle::VehicleDescription& onboard, double field_node_s);
+
 struct ReferenceVectors {
   Eigen::Vector3d sun_N_unit = Eigen::Vector3d::UnitX();  // [-] spacecraft -> Sun, inertial
   Eigen::Vector3d b_N_T = Eigen::Vector3d::Zero();        // [T] field at the spacecraft, inertial
@@ -43,24 +50,13 @@ struct ReferenceVectors {
   Eigen::Vector3d v_N_m_s = Eigen::Vector3d::Zero();      // [m/s] onboard velocity, inertial
 };
 
-/// Onboard reference vectors at a time.
-///
-/// The field model is the costly part (a degree-13 synthesis was half of the
-/// estimator's step, issue 10), and flight software commonly runs it slower
-/// than the filter. It is evaluated at the nodes t_j = j·h (h = field_node_s)
-/// and the value at t in [t_j, t_j+1) is the quadratic through the nodes
-/// j−2, j−1, j, extrapolated (Lagrange; only past nodes, so the onboard orbit is
-/// still asked in increasing time). Its error is at most h³·max|b⃛| for
-/// τ = (t − t_j)/h < 1 (the remainder b⃛(ξ)/3! · τ(τ+1)(τ+2) h³). Along a low
-/// orbit the inertial field turns at about twice the orbit rate, so
-/// |b⃛| ≈ (2n)³|b| and at h = 1 s the relative error is about 1e-8
-/// (tests/unit/components/ReferenceModelTest.cpp bounds it against the exact model).
-/// The Sun's position is taken at the same nodes: it was the larger part of
-/// what was left (a composed rig step, callgrind, issue 10), and its path is
-/// smoother still (|r⃛| ≈ n⊕³|r| with the Earth's mean motion n⊕ = 2e-7 rad/s:
-/// a remainder of a nanometre in 1.5e11 m, below the 1.2 m the ephemeris
-/// itself moves by in the 40 µs its Julian date resolves; measured 2e-11 rad).
-/// Without three consecutive nodes (the start, a jump in time) it evaluates exactly.
+/// Onboard reference vectors at a time. The field model and the Sun's
+/// position are evaluated at the nodes t_j = j·h (h = field_node_s) and
+/// extrapolated in between by the quadratic through the nodes j−2, j−1, j
+/// (Lagrange); the error is at most h³·max|b⃛|, about 1e-8 of the field at
+/// h = 1 s in a low orbit. Derivation and measured figures: docs/onboard.md,
+/// "The reference model between its nodes". Without three consecutive nodes
+/// (the start, a jump in time) it evaluates exactly.
 class ReferenceModel {
  public:
   using Params = ReferenceModelParams;
@@ -98,4 +94,4 @@ class ReferenceModel {
   double jd_epoch_;  // [d] UTC ≈ UT1
 };
 
-}  // namespace flatsat::estimator
+}  // namespace flatsat::onboard

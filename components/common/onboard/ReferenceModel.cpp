@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "components/estimator/ReferenceModel.hpp"
+#include "components/common/onboard/ReferenceModel.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +9,7 @@
 #include "sim/DynamicsModel.hpp"
 #include "sim/SunEphemeris.hpp"
 
-namespace flatsat::estimator {
+namespace flatsat::onboard {
 
 std::vector<std::string> ReferenceModelParams::validate() const {
   std::vector<std::string> problems;
@@ -20,6 +20,19 @@ std::vector<std::string> ReferenceModelParams::validate() const {
   }
   if (!(field_node_s >= 0.0 && field_node_s <= 10.0)) problems.push_back("field_node_s: must be in 0..10 s");
   return problems;
+}
+
+ReferenceModelParams referenceModelOf(const vehicle::VehicleDescription& onboard, double field_node_s) {
+  ReferenceModelParams p{onboard.epoch, onboard.orbit, onboard.orbit_track, onboard.field.dipole, std::nullopt,
+                         field_node_s};
+  // A numerical propagator's drag uses the density model the onboard view carries.
+  if (onboard.atmosphere) p.orbit_track.forces.atmosphere = *onboard.atmosphere;
+  if (onboard.field.spherical_harmonics) {
+    auto harmonics = onboard.field.harmonics;
+    harmonics.degree = std::min(harmonics.degree, onboard.field.degree);
+    p.field_harmonics = harmonics;
+  }
+  return p;
 }
 
 ReferenceModel::ReferenceModel(const Params& params)
@@ -75,4 +88,4 @@ ReferenceVectors ReferenceModel::step(std::int64_t t_ns) {
   return out;
 }
 
-}  // namespace flatsat::estimator
+}  // namespace flatsat::onboard

@@ -1,11 +1,17 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "sim/DynamicsServerNode.hpp"
+#include "components/dynamics_server/DynamicsServerNode.hpp"
 
 #include <spdlog/spdlog.h>
 
 #include "bus/Convert.hpp"
+#include "components/Processes.hpp"
+#include "vehicle/VehicleReader.hpp"
 
-namespace flatsat::sim {
+namespace flatsat::dynamics_server {
+
+using sim::ActuatorCommands;
+using sim::ActuatorFault;
+using sim::Truth;
 
 namespace {
 
@@ -66,7 +72,7 @@ DynamicsServerNode::DynamicsServerNode(bus::Bus& bus, bus::NodeOptions options,
                   [wheels = params.dynamics.body.wheel_count,
                    thrusters = static_cast<int>(params.dynamics.thrusters.size())](
                       const msg::FaultCmd& command, ActuatorFault& fault) {
-                    return toActuatorFault(command, wheels, thrusters, fault);
+                    return vehicle::toActuatorFault(command, wheels, thrusters, fault);
                   },
                   fault_events_) {
   for (const auto& fault : params.faults) faults_.add(fault);
@@ -115,8 +121,8 @@ void DynamicsServerNode::advance(const bus::StepContext& ctx) {
     const auto thrusters = thruster_cmd_->at(ctx.step);
     if (!thruster_cmd_fired_ || thrusters.header().step() > *thruster_cmd_fired_) {
       thruster_cmd_fired_ = thrusters.header().step();
-      cmd.thruster_on_time_s = Eigen::Map<const ThrusterVector>(thrusters.on_time_s().data());
-      cmd.thruster_gimbal_rad = Eigen::Map<const ThrusterGimbals>(thrusters.gimbal_rad().data());
+      cmd.thruster_on_time_s = Eigen::Map<const sim::ThrusterVector>(thrusters.on_time_s().data());
+      cmd.thruster_gimbal_rad = Eigen::Map<const sim::ThrusterGimbals>(thrusters.gimbal_rad().data());
     }
   }
   fault_port_.take(ctx, [this](const ActuatorFault& fault) { return faults_.add(fault); });
@@ -130,4 +136,8 @@ void DynamicsServerNode::advance(const bus::StepContext& ctx) {
   }
 }
 
-}  // namespace flatsat::sim
+int runProcess(int argc, char** argv) {
+  return bus::runNodeOf<DynamicsServerNode>(argc, argv, "dynamics_server", vehicle::withVehicle(readParams));
+}
+
+}  // namespace flatsat::dynamics_server

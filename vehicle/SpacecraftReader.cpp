@@ -1,13 +1,19 @@
 // SPDX-License-Identifier: Apache-2.0
-// The spacecraft section of the plant: inertia, wheels, torquers, the orbit's
-// mass and areas, panels, thrusters and flaps.
+// The spacecraft section: inertia, wheels, torquers, the orbit's mass and
+// areas, panels, thrusters, flaps, sensor mountings and actuator faults.
 #include <string>
 #include <utility>
 #include <vector>
 
-#include "sim/DynamicsServerSections.hpp"
+#include "bus/FaultFields.hpp"
+#include "vehicle/ReaderSections.hpp"
 
-namespace flatsat::sim {
+namespace flatsat::vehicle {
+
+using sim::OrbitForceParams;
+using sim::OrbitTrackParams;
+using sim::Panel;
+using sim::ThrusterParams;
 
 namespace {
 
@@ -80,7 +86,7 @@ void readOrbitProperties(bus::ParamReader& spacecraft, OrbitTrackParams& track) 
   spacecraft.read("drag_coefficient", f.drag_coefficient, "-");
   spacecraft.read("srp_area_m2", f.srp_area_m2, "m^2");
   spacecraft.read("reflectivity_coefficient", f.reflectivity_coefficient, "-");
-  if (track.propagator != OrbitPropagation::kNumerical) return;
+  if (track.propagator != sim::OrbitPropagation::kNumerical) return;
   const std::pair<const char*, bool> needed[] = {
       {"mass_kg", true}, {"drag_area_m2", f.drag}, {"srp_area_m2", f.solar_pressure}};
   for (const auto& [key, is_needed] : needed) {
@@ -91,7 +97,7 @@ void readOrbitProperties(bus::ParamReader& spacecraft, OrbitTrackParams& track) 
 
 }  // namespace
 
-void readSpacecraft(bus::ParamReader spacecraft, DynamicsParams& p) {
+void readSpacecraft(bus::ParamReader spacecraft, VehicleDescription& p) {
   spacecraft.read("inertia_kg_m2", p.body.J_B_kg_m2, "kg m^2");
   readOrbitProperties(spacecraft, p.orbit_track);
   spacecraft.read("residual_dipole_body_Am2", p.residual_dipole_B_Am2, "A m^2");
@@ -103,7 +109,7 @@ void readSpacecraft(bus::ParamReader spacecraft, DynamicsParams& p) {
   wheels.read("viscous_friction_Nms_per_rad", p.body.wheel_viscous_friction_Nms_rad, "N m s/rad");
   wheels.read("coulomb_friction_Nm", p.body.wheel_coulomb_friction_Nm, "N m");
   // A scalar applies to every wheel; slots beyond the count stay empty.
-  for (int i = p.body.wheel_count; i < kMaxWheels; ++i) {
+  for (int i = p.body.wheel_count; i < sim::kMaxWheels; ++i) {
     p.body.wheel_inertia_kg_m2[i] = p.body.wheel_max_torque_Nm[i] = 0.0;
     p.body.wheel_max_momentum_Nms[i] = 0.0;
     p.body.wheel_viscous_friction_Nms_rad[i] = p.body.wheel_coulomb_friction_Nm[i] = 0.0;
@@ -123,7 +129,31 @@ void readSpacecraft(bus::ParamReader spacecraft, DynamicsParams& p) {
   flaps.problems(p.flaps.validate());
   flaps.finish();
   spacecraft.problems(p.body.validate());
+  readSensorMountings(spacecraft.section("sensors"), p.sensors);
+  p.faults = readActuatorFaults(spacecraft, p);
   spacecraft.finish();
 }
 
-}  // namespace flatsat::sim
+void readSensorMountings(bus::ParamReader sensors, SensorMountings& m) {
+  auto sun = sensors.section("sun_sensor");
+  sun.read("boresight_body", m.sun_sensor_boresight_B, "-");
+  sun.finish();
+  auto star = sensors.section("star_tracker");
+  star.read("q_body_sensor", m.q_body_star_tracker);
+  star.finish();
+  auto magnetometer = sensors.section("magnetometer");
+  magnetometer.read("q_body_sensor", m.q_body_magnetometer);
+  magnetometer.finish();
+  sensors.problems(m.validate());
+  sensors.finish();
+}
+
+std::vector<sim::ActuatorFault> readActuatorFaults(bus::ParamReader& reader, const VehicleDescription& v) {
+  const int wheels = v.body.wheel_count;
+  const int thrusters = static_cast<int>(v.thrusters.size());
+  return bus::readFaults<sim::ActuatorFault>(
+      reader, "-", kActuatorFaultKinds, sim::ActuatorFaults::kMaxFaults, sim::parseActuatorFaultKind,
+      [wheels, thrusters](const sim::ActuatorFault& f) { return f.validate(wheels, thrusters); });
+}
+
+}  // namespace flatsat::vehicle

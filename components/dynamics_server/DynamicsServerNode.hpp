@@ -4,9 +4,10 @@
 
 #include "bus/FaultPort.hpp"
 #include "bus/TimeMaster.hpp"
-#include "sim/DynamicsServerParams.hpp"
+#include "components/dynamics_server/DynamicsServerParams.hpp"
+#include "sim/DynamicsModel.hpp"
 
-namespace flatsat::sim {
+namespace flatsat::dynamics_server {
 
 /// The dynamics server: time master of the lockstep rig. Publishes the truth
 /// at t_k, then holds the commands stamped k over [t_k, t_k+1).
@@ -28,10 +29,10 @@ class DynamicsServerNode final : public bus::TimeMaster {
   std::int64_t wheel_cmd_age_steps_ = kNoCommand;   // of the command held over the last step
   std::int64_t dipole_cmd_age_steps_ = kNoCommand;
   int wheel_count_;
-  DynamicsModel model_;
-  ActuatorFaults faults_;
+  sim::DynamicsModel model_;
+  sim::ActuatorFaults faults_;
   bus::WriterOf<bus::topics::kFaultEvent>& fault_events_ = addOutput(bus::topics::kFaultEvent);
-  bus::FaultPort<ActuatorFault> fault_port_;
+  bus::FaultPort<sim::ActuatorFault> fault_port_;
 };
 
-}  // namespace flatsat::sim
+}  // namespace flatsat::dynamics_server

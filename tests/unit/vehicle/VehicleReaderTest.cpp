@@ -1,0 +1,132 @@
+// SPDX-License-Identifier: Apache-2.0
+// The vehicle of a scenario: read once, the onboard view equal to the truth
+// item by item unless `onboard:` says otherwise, and every problem named by
+// file and key.
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <catch2/catch.hpp>
+
+#include "vehicle/VehicleReader.hpp"
+
+using namespace flatsat;
+
+namespace {
+
+const std::string kDefault = std::string(FLATSAT_SOURCE_DIR) + "/deploy/scenarios/default.yaml";
+
+/// A scenario laid over default.yaml, in a folder of this process's own.
+struct OverDefault {
+  std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("vehicle-reader-" + std::to_string(::getpid()));
+  OverDefault() { std::filesystem::create_directories(dir); }
+  ~OverDefault() { std::filesystem::remove_all(dir); }
+  bus::Scenario load(const std::string& name, const std::string& keys) const {
+    const auto file = dir / name;
+    std::ofstream(file) << "base: " << kDefault << "\nname: " << name << "\n" << keys;
+    return bus::loadScenario(file.string());
+  }
+};
+
+bool anyContains(const std::vector<std::string>& problems, const std::string& text) {
+  for (const auto& p : problems) {
+    if (p.find(text) != std::string::npos) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+TEST_CASE("the onboard view of a scenario without onboard: is its truth", "[vehicle]") {
+  bus::ConfigProblems problems;
+  const vehicle::Vehicle v = vehicle::readVehicle(bus::loadScenario(kDefault), problems);
+  REQUIRE(problems.list().empty());
+  // default.yaml's figures: inertia row 1, 560 km at 53 deg, four wheels, 150 A m^2 coils.
+  CHECK(v.truth.body.J_B_kg_m2(0, 0) == 1500.0);
+  CHECK(v.truth.body.J_B_kg_m2(0, 1) == 20.0);
+  CHECK(v.truth.orbit.semi_major_axis_m == 6378137.0 + 560e3);
+  CHECK(v.truth.orbit.inclination_rad == Approx(53.0 * M_PI / 180.0).epsilon(1e-15));
+  CHECK(v.truth.body.wheel_count == 4);
+  CHECK(v.truth.torquer_max_dipole_Am2 == Eigen::Vector3d::Constant(150.0));
+  CHECK(v.truth.field.spherical_harmonics);
+  CHECK(v.truth.field.degree == 13);
+  // IGRF-14 g10 at the epoch 2026-03-20 (78 days into 2026): -29350.0 nT at 2025.0
+  // and +12.6 nT/yr (data/igrf/igrf14coeffs.txt).
+  CHECK(v.truth.field.harmonics.g_nT[1][0] == Approx(-29350.0 + 12.6 * (1.0 + 78.0 / 365.0)).margin(0.01));
+
+  CHECK(v.onboard.body.J_B_kg_m2 == v.truth.body.J_B_kg_m2);
+  CHECK(v.onboard.body.wheel_axes_B == v.truth.body.wheel_axes_B);
+  CHECK(v.onboard.orbit.semi_major_axis_m == v.truth.orbit.semi_major_axis_m);
+  CHECK(v.onboard.orbit_track.propagator == v.truth.orbit_track.propagator);
+  CHECK(v.onboard.field.harmonics.g_nT[1][0] == v.truth.field.harmonics.g_nT[1][0]);
+  CHECK(v.onboard.sensors.sun_sensor_boresight_B == v.truth.sensors.sun_sensor_boresight_B);
+  CHECK(v.onboard.faults.size() == v.truth.faults.size());
+}
+
+TEST_CASE("onboard: makes model error a setting, item by item", "[vehicle]") {
+  const OverDefault over;
+  const auto scenario = over.load("misknown.yaml",
+                                  "spacecraft:\n"
+                                  "  faults: [{kind: wheel_failed, channel: 2, start_s: 600}]\n"
+                                  "onboard:\n"
+                                  "  inertia_kg_m2: [[1650, 20, -15], [20, 2600, 10], [-15, 10, 2800]]\n"
+                                  "  sensors: {star_tracker: {q_body_sensor: [0.9999619230641713, 0.0087265354983739, 0, 0]}}\n"
+                                  "  field_model: tilted_dipole\n"
+                                  "  orbit: {propagator: kepler, mean_anomaly_rad: 0.01 deg}\n"
+                                  "  faults: []\n");
+  bus::ConfigProblems problems;
+  const vehicle::Vehicle v = vehicle::readVehicle(scenario, problems);
+  INFO(problems.joined());
+  REQUIRE(problems.list().empty());
+  // The truth is as default.yaml has it, with the fault.
+  CHECK(v.truth.body.J_B_kg_m2(0, 0) == 1500.0);
+  CHECK(v.truth.sensors.q_body_star_tracker.w() == 1.0);
+  CHECK(v.truth.field.spherical_harmonics);
+  CHECK(v.truth.orbit_track.propagator == sim::OrbitPropagation::kNumerical);
+  CHECK(v.truth.orbit.mean_anomaly_rad == 0.0);
+  REQUIRE(v.truth.faults.size() == 1);
+  CHECK(v.truth.faults[0].start_ns == 600'000'000'000LL);
+  // Onboard: 10 % more inertia about x, the star tracker's mounting 1 deg about x,
+  // the tilted dipole, a Kepler orbit 0.01 deg ahead, no fault declared.
+  CHECK(v.onboard.body.J_B_kg_m2(0, 0) == 1650.0);
+  CHECK(v.onboard.body.J_B_kg_m2(1, 1) == 2600.0);
+  const double mounting_error_rad =
+      v.onboard.sensors.q_body_star_tracker.angularDistance(v.truth.sensors.q_body_star_tracker);
+  CHECK(mounting_error_rad == Approx(M_PI / 180.0).epsilon(1e-9));
+  CHECK_FALSE(v.onboard.field.spherical_harmonics);
+  CHECK(v.onboard.field.dipole.g10_nT == v.truth.field.dipole.g10_nT);
+  CHECK(v.onboard.orbit_track.propagator == sim::OrbitPropagation::kKepler);
+  CHECK(v.onboard.orbit.mean_anomaly_rad == Approx(0.01 * M_PI / 180.0).epsilon(1e-15));
+  CHECK(v.onboard.orbit.semi_major_axis_m == v.truth.orbit.semi_major_axis_m);
+  CHECK(v.onboard.faults.empty());
+  // Items the view leaves alone stay the truth's.
+  CHECK(v.onboard.body.wheel_axes_B == v.truth.body.wheel_axes_B);
+  CHECK(v.onboard.torquer_max_dipole_Am2 == v.truth.torquer_max_dipole_Am2);
+}
+
+TEST_CASE("a vehicle's problems name the file and the key", "[vehicle]") {
+  const OverDefault over;
+  const auto scenario = over.load("bad.yaml",
+                                  "spacecraft:\n"
+                                  "  sensors: {star_tracker: {q_body_sensor: [1, 1, 0, 0]}, sun_sensor: {boresight: [1, 0, 0]}}\n"
+                                  "  faults: [{kind: wheel_failed, channel: 7}]\n"
+                                  "onboard:\n"
+                                  "  wheels: {axes_body: [[1, 0, 0], [0, 1, 0]]}\n"
+                                  "  field_model: igrf99\n"
+                                  "  orbit: {propagator: numerical}\n");
+  bus::ConfigProblems problems;
+  vehicle::readVehicle(scenario, problems);
+  const auto& list = problems.list();
+  INFO(problems.joined());
+  CHECK(anyContains(list, "bad.yaml"));
+  CHECK(anyContains(list, "spacecraft.sensors.star_tracker.q_body_sensor"));
+  CHECK(anyContains(list, "spacecraft.sensors.sun_sensor.boresight: unknown key"));
+  CHECK(anyContains(list, "spacecraft.faults[0]"));
+  CHECK(anyContains(list, "onboard.wheels.axes_body: 2 axes for 4 wheels"));
+  CHECK(anyContains(list, "onboard.field_model: 'igrf99' is not tilted_dipole, igrf14 or wmm2025"));
+  CHECK(anyContains(list, "onboard.orbit.propagator: 'numerical' is neither truth nor kepler"));
+}

@@ -1,0 +1,260 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "vehicle/VehicleReader.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "bus/FaultFields.hpp"
+#include "sim/Constants.hpp"
+#include "vehicle/ReaderSections.hpp"
+
+namespace flatsat::vehicle {
+
+const std::vector<std::string> kEnvironmentKeys = {
+    "field_model", "field_degree", "igrf_file", "wmm_file", "atmosphere", "bulge_exponent",
+    "harris_priester_table", "density_kg_m3"};
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string findDataFile(const bus::Scenario& scenario, const std::string& name) {
+  const fs::path given(name);
+  if (given.is_absolute()) return name;
+  const fs::path beside = fs::path(scenario.file).parent_path() / given;
+  if (fs::exists(beside)) return beside.string();
+  for (const char* dir : {FLATSAT_SOURCE_DATA_DIR, FLATSAT_INSTALL_DATA_DIR}) {
+    if (fs::exists(fs::path(dir) / given)) return (fs::path(dir) / given).string();
+  }
+  return name;
+}
+
+/// orbit.propagator, orbit.step_s and the force switches orbit.forces.*; the
+/// spacecraft's mass and areas are read with the spacecraft.
+void readPropagator(bus::ParamReader& orbit, sim::OrbitTrackParams& track) {
+  std::string propagator = "kepler";
+  orbit.read("propagator", propagator);
+  if (propagator == "numerical") {
+    track.propagator = sim::OrbitPropagation::kNumerical;
+  } else if (propagator != "kepler") {
+    orbit.problem("propagator", "'" + propagator + "' is neither kepler nor numerical");
+  }
+  orbit.read("step_s", track.step_s, "s");
+  auto forces = orbit.section("forces");
+  sim::OrbitForceParams& f = track.forces;
+  forces.read("j2", f.j2);
+  forces.read("j3", f.j3);
+  forces.read("j4", f.j4);
+  forces.read("j22", f.j22);
+  forces.read("drag", f.drag);
+  forces.read("solar_pressure", f.solar_pressure);
+  forces.read("sun_gravity", f.sun_gravity);
+  forces.read("moon_gravity", f.moon_gravity);
+  forces.finish();
+  if (track.propagator == sim::OrbitPropagation::kKepler) {
+    for (const char* key : {"step_s", "forces"}) {
+      if (orbit.has(key)) orbit.problem(key, "only with propagator: numerical");
+    }
+  }
+  // The forces' errors are the spacecraft's (mass, areas, coefficients).
+  for (const std::string& error : track.validate()) {
+    if (error.rfind("forces.", 0) != 0) orbit.problems({error});
+  }
+}
+
+/// The six elements, each kept when absent (the onboard view's starts from the truth's).
+void readElements(bus::ParamReader& orbit, sim::OrbitElements& elements) {
+  double altitude_m = 0.0;
+  orbit.read("altitude_m", altitude_m, "m");
+  orbit.read("semi_major_axis_m", elements.semi_major_axis_m, "m");
+  if (orbit.has("altitude_m") && orbit.has("semi_major_axis_m")) {
+    orbit.problem("", "give altitude_m (circular) or semi_major_axis_m, not both");
+  } else if (orbit.has("altitude_m")) {
+    elements.semi_major_axis_m = sim::kEarthEquatorialRadius_m + altitude_m;
+  }
+  orbit.read("eccentricity", elements.eccentricity, "-");
+  orbit.read("inclination_rad", elements.inclination_rad, "rad");
+  orbit.read("raan_rad", elements.raan_rad, "rad");
+  orbit.read("arg_perigee_rad", elements.arg_perigee_rad, "rad");
+  orbit.read("mean_anomaly_rad", elements.mean_anomaly_rad, "rad");
+  orbit.problems(elements.validate());
+}
+
+void readOrbit(bus::ParamReader orbit, VehicleDescription& v) {
+  std::string epoch = "2026-03-20T00:00:00Z";
+  orbit.read("epoch_utc", epoch);
+  try {
+    v.epoch = sim::parseIso8601Utc(epoch);
+  } catch (const std::invalid_argument& e) {
+    orbit.problem("epoch_utc", e.what());
+  }
+  if (!orbit.has("altitude_m") && !orbit.has("semi_major_axis_m")) {
+    orbit.problem("", "give exactly one of altitude_m (circular) or semi_major_axis_m");
+  }
+  readElements(orbit, v.orbit);
+  readPropagator(orbit, v.orbit_track);
+  orbit.finish();
+}
+
+/// The data files the field models come from, and the keys that named them.
+struct FieldFiles {
+  std::string igrf = "igrf/igrf14coeffs.txt";
+  std::string wmm = "wmm/WMM2025.COF";
+  std::string igrf_key = "igrf_file";  ///< where a problem of the file is reported
+  std::string wmm_key = "wmm_file";
+};
+
+/// `model` (tilted_dipole, igrf14, wmm2025) at the epoch's decimal year into
+/// `field`; problems go to `reader`, an unknown model at `model_key`. The
+/// tilted dipole's coefficients always come from the IGRF file.
+void loadField(const bus::Scenario& scenario, bus::ParamReader& reader, const std::string& model_key,
+               const std::string& model, const FieldFiles& files, const sim::UtcEpoch& epoch, FieldModel& field) {
+  const double year = sim::decimalYear(epoch);
+  field.spherical_harmonics = false;
+  const auto load = [&](const std::string& key, const std::string& file, auto loader) {
+    try {
+      field.harmonics = loader(findDataFile(scenario, file), year);
+      field.spherical_harmonics = true;
+    } catch (const std::exception& e) {
+      reader.problem(key, e.what());
+    }
+  };
+  bool igrf_read = false;
+  try {
+    field.dipole = sim::igrfDipoleAt(findDataFile(scenario, files.igrf), year);
+    igrf_read = true;
+  } catch (const std::exception& e) {
+    reader.problem(files.igrf_key, e.what());
+  }
+  if (model == "igrf14") {
+    if (igrf_read) load(files.igrf_key, files.igrf, sim::igrf14Coefficients);
+  } else if (model == "wmm2025") {
+    load(files.wmm_key, files.wmm, sim::wmm2025Coefficients);
+  } else if (model != "tilted_dipole") {
+    reader.problem(model_key, "'" + model + "' is not tilted_dipole, igrf14 or wmm2025");
+  }
+}
+
+void readDegree(bus::ParamReader& reader, FieldModel& field) {
+  reader.read("field_degree", field.degree);
+  if (field.degree < 1 || field.degree > sim::GaussCoefficients::kMaxDegree) {
+    reader.problem("field_degree", std::to_string(field.degree) + " must be in 1..13");
+  }
+}
+
+/// environment.atmosphere: constant (density_kg_m3) or a density model.
+void readAtmosphere(const bus::Scenario& scenario, bus::ParamReader& environment, VehicleDescription& v) {
+  std::string model = "constant";
+  environment.read("atmosphere", model);
+  sim::AtmosphereParams atmosphere;
+  environment.read("bulge_exponent", atmosphere.bulge_exponent, "-");
+  // The solar activity: the table published for it (default: mean activity, M&G Table 3.8).
+  std::string table_file;
+  environment.read("harris_priester_table", table_file);
+  if (!table_file.empty()) {
+    try {
+      atmosphere.harris_priester_table = sim::readHarrisPriesterTable(findDataFile(scenario, table_file));
+    } catch (const std::exception& e) {
+      environment.problem("harris_priester_table", e.what());
+    }
+  }
+  environment.read("density_kg_m3", v.density_kg_m3, "kg/m^3");
+  if (model == "harris_priester" || model == "exponential") {
+    atmosphere.model = model == "exponential" ? sim::DensityModel::kExponential : sim::DensityModel::kHarrisPriester;
+    environment.problems(atmosphere.validate());
+    v.atmosphere = atmosphere;
+    if (environment.has("density_kg_m3")) environment.problem("density_kg_m3", "only with atmosphere: constant");
+  } else if (model != "constant") {
+    environment.problem("atmosphere", "'" + model + "' is not constant, harris_priester or exponential");
+  }
+  for (const char* key : {"bulge_exponent", "harris_priester_table"}) {
+    if (model != "harris_priester" && environment.has(key)) environment.problem(key, "only with atmosphere: harris_priester");
+  }
+  if (!(v.density_kg_m3 >= 0.0 && std::isfinite(v.density_kg_m3))) {
+    environment.problem("density_kg_m3", "must be finite and >= 0");
+  }
+  const sim::OrbitTrackParams& track = v.orbit_track;
+  if (track.propagator == sim::OrbitPropagation::kNumerical && track.forces.drag && !v.atmosphere) {
+    environment.problem("atmosphere", "the numerical orbit's drag needs harris_priester or exponential");
+  }
+}
+
+/// `onboard:`: what flight software believes where it differs from the truth.
+void readOnboard(const bus::Scenario& scenario, bus::ParamReader onboard, const FieldFiles& files,
+                 VehicleDescription& v) {
+  onboard.read("inertia_kg_m2", v.body.J_B_kg_m2, "kg m^2");
+  auto wheels = onboard.section("wheels");
+  if (wheels.has("axes_body")) {
+    int count = 0;
+    wheels.read("axes_body", v.body.wheel_axes_B, count);
+    if (count != v.body.wheel_count) {
+      wheels.problem("axes_body", std::to_string(count) + " axes for " + std::to_string(v.body.wheel_count) +
+                                      " wheels (spacecraft.wheels)");
+    }
+  }
+  wheels.finish();
+  onboard.problems(v.body.validate());
+  if (onboard.has("sensors")) readSensorMountings(onboard.section("sensors"), v.sensors);
+  if (onboard.has("field_model")) {
+    std::string model;
+    onboard.read("field_model", model);
+    FieldFiles named_by_environment = files;
+    named_by_environment.igrf_key = named_by_environment.wmm_key = "field_model";
+    loadField(scenario, onboard, "field_model", model, named_by_environment, v.epoch, v.field);
+  }
+  readDegree(onboard, v.field);
+  auto orbit = onboard.section("orbit");
+  std::string propagator = "truth";
+  orbit.read("propagator", propagator);
+  if (propagator == "kepler") {
+    v.orbit_track = sim::OrbitTrackParams{};
+  } else if (propagator != "truth") {
+    orbit.problem("propagator", "'" + propagator + "' is neither truth nor kepler");
+  }
+  readElements(orbit, v.orbit);
+  orbit.finish();
+  if (onboard.has("faults")) v.faults = readActuatorFaults(onboard, v);
+  onboard.finish();
+}
+
+}  // namespace
+
+Vehicle readVehicle(const bus::Scenario& scenario, bus::ConfigProblems& problems) {
+  Vehicle vehicle;
+  VehicleDescription& truth = vehicle.truth;
+  readOrbit(scenario.section("orbit", problems), truth);
+  readSpacecraft(scenario.section("spacecraft", problems), truth);
+
+  auto environment = scenario.section("environment", problems);
+  std::string model = "tilted_dipole";
+  FieldFiles files;
+  environment.read("field_model", model);
+  environment.read("igrf_file", files.igrf);
+  environment.read("wmm_file", files.wmm);
+  loadField(scenario, environment, "field_model", model, files, truth.epoch, truth.field);
+  readDegree(environment, truth.field);
+  readAtmosphere(scenario, environment, truth);
+  environment.leave({"gravity_gradient", "disturbance_torque_body_Nm"});  // the dynamics server's
+  environment.finish();
+
+  vehicle.onboard = truth;
+  readOnboard(scenario, scenario.section("onboard", problems), files, vehicle.onboard);
+  return vehicle;
+}
+
+Vehicle vehicleOf(const bus::Scenario& scenario) {
+  bus::ConfigProblems problems;
+  Vehicle vehicle = readVehicle(scenario, problems);
+  if (!problems.empty()) throw bus::ScenarioError(problems.joined());
+  return vehicle;
+}
+
+std::vector<std::string> toActuatorFault(const msg::FaultCmd& command, int wheels, int thrusters,
+                                         sim::ActuatorFault& fault) {
+  return bus::faultFromCommand(command, fault, kActuatorFaultKinds, sim::parseActuatorFaultKind,
+                               [wheels, thrusters](const sim::ActuatorFault& f) { return f.validate(wheels, thrusters); });
+}
+
+}  // namespace flatsat::vehicle
