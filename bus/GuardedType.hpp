@@ -11,7 +11,7 @@
 // into the Fast DDS thread that runs the listener and std::terminate()s the
 // process: one rogue sample on a topic would abort every subscriber. Fast DDS
 // 2.9.1 skips a sample whose deserialize() returns false (it reaches no
-// listener; tests/component/MalformedSamplesTest.cpp), so the drop is
+// listener; tests/component/MalformedSamplesNodeTest.cpp), so the drop is
 // counted here, where it happens.
 #include <functional>
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "tools/Guarded.hpp"
+#include "tools/ReportErrors.hpp"
 #include "tools/CmdCommand.hpp"
 
 #include <cmath>
@@ -143,7 +143,7 @@ CLI::App* addCmdCommand(CLI::App& app, int& exit_code) {
       ->check(CLI::IsMember({"unload", "detumble", "spin_capture"}));
   common(mode);
   mode->callback([o, &exit_code] {
-    guarded(exit_code, [&] {
+    runReportingErrors(exit_code, [&] {
       msg::ModeCmd command;
       command.mode(kModes.at(o->mode));
       return send(bus::topics::kUnloadingModeCmd, command, "mode " + o->mode, *o);
@@ -174,7 +174,7 @@ CLI::App* addCmdCommand(CLI::App& app, int& exit_code) {
   common(fault);
   fault->callback([o, magnitude, &exit_code] {
     if (o->target == bus::kBusFaultTarget && o->kind != "delay" && magnitude->count() == 0) o->magnitude = 1.0;
-    guarded(exit_code, [&] {
+    runReportingErrors(exit_code, [&] {
       msg::FaultCmd command;
       bus::setText(command.target(), o->target);
       bus::setText(command.kind(), o->kind);
@@ -193,7 +193,7 @@ CLI::App* addCmdCommand(CLI::App& app, int& exit_code) {
   param->add_option("value", o->value, "new value, in the unit the key names")->required();
   common(param);
   param->callback([o, &exit_code] {
-    guarded(exit_code, [&] {
+    runReportingErrors(exit_code, [&] {
       msg::ParamCmd command;
       bus::setText(command.target(), o->target);
       bus::setText(command.key(), o->key);

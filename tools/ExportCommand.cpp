@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "tools/Guarded.hpp"
+#include "tools/ReportErrors.hpp"
 #include "tools/ExportCommand.hpp"
 
 #include <algorithm>
@@ -151,7 +151,7 @@ CLI::App* addExportCommand(CLI::App& app, int& exit_code) {
       exit_code = 2;
       return;
     }
-    guarded(exit_code, [&] { return exportRecording(*options); });
+    runReportingErrors(exit_code, [&] { return exportRecording(*options); });
   });
   return cmd;
 }

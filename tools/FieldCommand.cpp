@@ -14,9 +14,12 @@
 #include "sim/Geodetic.hpp"
 #include "sim/GeomagneticField.hpp"
 #include "sim/SpotFieldModel.hpp"
-#include "tools/Conventions.hpp"
+#include "analysis/Conventions.hpp"
 
 namespace flatsat::tools {
+
+using analysis::kDeg;
+using analysis::kExitBadInput;
 namespace {
 
 constexpr int kExitMissingData = 1;

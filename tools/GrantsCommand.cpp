@@ -18,7 +18,7 @@
 #include "bus/Security.hpp"
 #include "bus/Topics.hpp"
 #include "components/Registry.hpp"
-#include "tools/Guarded.hpp"
+#include "tools/ReportErrors.hpp"
 #include "vehicle/VehicleReader.hpp"
 
 namespace flatsat::tools {
@@ -192,7 +192,7 @@ std::vector<Grant> securityGrants(const std::vector<std::string>& requested) {
     if (id == bus::kOperatorIdentity) {
       // Commands: command topics without a producer that no component writes
       // (fault_cmd, unloading_mode_cmd, param_cmd); and the launcher's
-      // "restarted" fault event (tools/Launcher.cpp, `flatsat run --restart`).
+      // "restarted" fault event (rig/Launcher.cpp, `flatsat run --restart`).
       for (const auto& topic : topics) {
         if (topic.qos == bus::QosKind::kCommand && topic.producer.empty() && !written_by_any.contains(topic.name)) {
           allowed.insert(topic.name);
@@ -245,7 +245,7 @@ CLI::App* addGrantsCommand(CLI::App& app, int& exit_code) {
       "the commands and fault_event; replay every stepped topic and what the time master\n"
       "writes. A component subscribes to what its node reads, operator and replay to every topic.");
   cmd->callback([identities, &exit_code] {
-    guarded(exit_code, [&] {
+    runReportingErrors(exit_code, [&] {
       std::vector<Grant> grants;
       try {
         grants = securityGrants(*identities);

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "tools/Guarded.hpp"
+#include "tools/ReportErrors.hpp"
 #include "tools/HealthCommand.hpp"
 
 #include <unistd.h>
@@ -161,7 +161,7 @@ CLI::App* addHealthCommand(CLI::App& app, int& exit_code) {
       "stamped its last health (wall clock; a running component reports every second);\n"
       "OVERRUNS and STALE count the paced steps it skipped or took with an old input.\n"
       "(gone): the component's participant left the bus.");
-  cmd->callback([options, &exit_code] { guarded(exit_code, [&] { return health(*options); }); });
+  cmd->callback([options, &exit_code] { runReportingErrors(exit_code, [&] { return health(*options); }); });
   return cmd;
 }
 

@@ -20,12 +20,23 @@
 #include "bus/Scenario.hpp"
 #include "bus/Shutdown.hpp"
 #include "components/Registry.hpp"
-#include "tools/Composed.hpp"
-#include "tools/McTable.hpp"
-#include "tools/RunDirectory.hpp"
-#include "tools/Spawn.hpp"
+#include "rig/ComposedRun.hpp"
+#include "analysis/McTable.hpp"
+#include "rig/RunDirectory.hpp"
+#include "rig/Spawn.hpp"
 
 namespace flatsat::tools {
+
+using rig::composedProblems;
+using rig::recordOnceASecond;
+using rig::defaultRunDirectory;
+using rig::spawnLogged;
+using rig::writeRunScenario;
+using analysis::McRun;
+using analysis::mcCsv;
+using analysis::mcNumericKeys;
+using analysis::mcSummary;
+using analysis::mcTable;
 
 namespace {
 

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "tools/MiddlewareBench.hpp"
-#include "tools/Quantile.hpp"
+#include "analysis/Quantile.hpp"
 
 #include <signal.h>
 #include <spawn.h>
@@ -37,6 +37,8 @@
 extern char** environ;
 
 namespace flatsat::tools {
+
+using analysis::quantile;
 namespace {
 
 /// The ping's step that tells the echo process to exit.

@@ -12,9 +12,11 @@
 
 #include "sim/Sgp4.hpp"
 #include "sim/Tle.hpp"
-#include "tools/Conventions.hpp"
+#include "analysis/Conventions.hpp"
 
 namespace flatsat::tools {
+
+using analysis::kExitBadInput;
 namespace {
 
 constexpr int kExitPropagationError = 1;

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "tools/Guarded.hpp"
+#include "tools/ReportErrors.hpp"
 #include "tools/RecordCommand.hpp"
 
 #include <algorithm>
@@ -157,7 +157,7 @@ CLI::App* addRecordCommand(CLI::App& app, int& exit_code) {
       "read it. Readers take the rig's own QoS (reliable, transient-local), so the\n"
       "last 64 steps before the tool joined come too. Recording stops 1 s after the\n"
       "rig's stop grant, on --seconds or on Ctrl-C; committed every 0.5 s.");
-  cmd->callback([options, &exit_code] { guarded(exit_code, [&] { return record(*options); }); });
+  cmd->callback([options, &exit_code] { runReportingErrors(exit_code, [&] { return record(*options); }); });
   return cmd;
 }
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "tools/Guarded.hpp"
+#include "tools/ReportErrors.hpp"
 #include "tools/ReplayCommand.hpp"
 
 #include <algorithm>
@@ -294,7 +294,7 @@ CLI::App* addReplayCommand(CLI::App& app, int& exit_code) {
       "  flatsat replay RUN/recording.sqlite --wait estimator --capture /tmp/x/re.sqlite\n"
       "Grants follow the recorded step grants (period, final step). With --capture it\n"
       "prints, per captured topic, how many samples are byte-identical to the recording.");
-  cmd->callback([options, &exit_code] { guarded(exit_code, [&] { return replay(*options); }); });
+  cmd->callback([options, &exit_code] { runReportingErrors(exit_code, [&] { return replay(*options); }); });
   return cmd;
 }
 

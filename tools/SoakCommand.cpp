@@ -25,9 +25,11 @@
 #include "bus/Serialization.hpp"
 #include "bus/Shutdown.hpp"
 #include "bus/Topics.hpp"
-#include "tools/Spawn.hpp"
+#include "rig/Spawn.hpp"
 
 namespace flatsat::tools {
+
+using rig::spawnLogged;
 
 namespace {
 

@@ -14,14 +14,20 @@
 #include "components/sun_sensor/SunSensorNode.hpp"
 #include "components/thruster_sequencer/AngleOnlyCase.hpp"
 #include "components/thruster_sequencer/ThrusterSequencerNode.hpp"
-#include "tools/Conventions.hpp"
-#include "tools/MagneticStudy.hpp"
-#include "tools/Quantile.hpp"
-#include "tools/RunDirectory.hpp"
-#include "tools/S0Study.hpp"
+#include "analysis/Conventions.hpp"
+#include "tools/MagneticStudyCommand.hpp"
+#include "analysis/Quantile.hpp"
+#include "rig/RunDirectory.hpp"
+#include "analysis/FieldFromMomentumStudy.hpp"
 #include "vehicle/VehicleReader.hpp"
 
 namespace flatsat::tools {
+
+using rig::writeRunScenario;
+using analysis::FieldFromMomentumStudyOptions;
+using analysis::kDeg;
+using analysis::quantile;
+using analysis::runFieldFromMomentumStudy;
 
 namespace {
 
@@ -128,7 +134,7 @@ CLI::App* addStudyCommand(CLI::App& app, int& exit_code) {
   s1->add_option("--duration-s", options->duration_s, "simulated time per case [s]")->capture_default_str();
   s1->callback([options, &exit_code] { exit_code = runStudy(*options); });
 
-  auto s0_options = std::make_shared<S0StudyOptions>();
+  auto s0_options = std::make_shared<FieldFromMomentumStudyOptions>();
   s0_options->scenario = std::string(FLATSAT_SOURCE_SCENARIO_DIR) + "/s0_no_magnetometer.yaml";
   auto* s0 = study->add_subcommand("s0", "S0 field and roll accuracy over window lengths and dipoles");
   s0->add_option("scenario", s0_options->scenario, "scenario (plant, sensors, attitude loop)")->capture_default_str();
@@ -139,7 +145,7 @@ CLI::App* addStudyCommand(CLI::App& app, int& exit_code) {
       ->check(CLI::PositiveNumber);
   s0->add_option("--dipole-Am2", s0_options->dipole_Am2, "one case only: x dipole [A m^2]")
       ->check(CLI::PositiveNumber);
-  s0->callback([s0_options, &exit_code] { exit_code = runS0Study(*s0_options); });
+  s0->callback([s0_options, &exit_code] { exit_code = runFieldFromMomentumStudy(*s0_options); });
 
   addMagneticStudies(*study, exit_code);
   return study;

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "tools/Guarded.hpp"
+#include "tools/ReportErrors.hpp"
 #include "tools/TopicsCommand.hpp"
 
 #include <algorithm>
@@ -227,7 +227,7 @@ CLI::App* addTopicsCommand(CLI::App& app, int& exit_code) {
       "component), else by their participant's name. RATE is 1 / mean interval of the\n"
       "samples written while listening, in wall time. Listens at least 4 s: the rig's\n"
       "components answer a new participant at their next discovery announcement.");
-  cmd->callback([options, &exit_code] { guarded(exit_code, [&] { return runTopics(*options); }); });
+  cmd->callback([options, &exit_code] { runReportingErrors(exit_code, [&] { return runTopics(*options); }); });
   return cmd;
 }
 

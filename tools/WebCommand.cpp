@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "tools/Guarded.hpp"
+#include "tools/ReportErrors.hpp"
 #include "tools/WebCommand.hpp"
 
 #include <arpa/inet.h>
@@ -217,7 +217,7 @@ CLI::App* addWebCommand(CLI::App& app, int& exit_code) {
       "Open http://127.0.0.1:PORT/: the health table (as `flatsat health`) and live plots of\n"
       "the body rate and the stored wheel momentum, refreshed twice a second; GET /state\n"
       "gives the same as JSON.");
-  cmd->callback([options, &exit_code] { guarded(exit_code, [&] { return web(*options); }); });
+  cmd->callback([options, &exit_code] { runReportingErrors(exit_code, [&] { return web(*options); }); });
   return cmd;
 }
 

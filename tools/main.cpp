@@ -21,30 +21,30 @@
 #include "bus/Shutdown.hpp"
 #include "components/Registry.hpp"
 #include "tools/CmdCommand.hpp"
-#include "tools/Composed.hpp"
-#include "tools/Conventions.hpp"
+#include "rig/ComposedRun.hpp"
+#include "analysis/Conventions.hpp"
 #include "tools/EchoCommand.hpp"
 #include "tools/ExportCommand.hpp"
 #include "tools/FieldCommand.hpp"
 #include "tools/GrantsCommand.hpp"
-#include "tools/Fleet.hpp"
+#include "rig/Fleet.hpp"
 #include "tools/HealthCommand.hpp"
 #include "tools/HzCommand.hpp"
-#include "tools/Launcher.hpp"
+#include "rig/Launcher.hpp"
 #include "tools/McCommand.hpp"
 #include "tools/MiddlewareBench.hpp"
 #include "tools/OrbitCommand.hpp"
 #include "tools/PhysicsBench.hpp"
 #include "tools/PlotCommand.hpp"
-#include "tools/Quantile.hpp"
+#include "analysis/Quantile.hpp"
 #include "tools/RecordCommand.hpp"
 #include "tools/ReplayCommand.hpp"
-#include "tools/Resume.hpp"
-#include "tools/RunDirectory.hpp"
-#include "tools/ShmClean.hpp"
+#include "rig/Resume.hpp"
+#include "rig/RunDirectory.hpp"
+#include "rig/ShmClean.hpp"
 #include "tools/SoakCommand.hpp"
 #include "tools/StudyCommand.hpp"
-#include "tools/Summary.hpp"
+#include "analysis/Summary.hpp"
 #include "tools/TopicsCommand.hpp"
 #include "tools/WebCommand.hpp"
 
@@ -54,7 +54,7 @@ using namespace flatsat;
 namespace {
 
 constexpr int kExitFailed = 1;
-using tools::kExitBadInput;
+using analysis::kExitBadInput;
 
 /// Loads a scenario and checks every component's parameters; prints every
 /// problem and returns false when there is any.
@@ -84,8 +84,8 @@ struct RunOptions {
   bool quiet = false;
   bool json = false;
   bool plots = true;  // the review figures into <run>/plots (flatsat plot)
-  bool composed = false;  // every component in this process, in-process bus (tools/Composed.hpp)
-  std::string resume;     // --resume DIR: a killed lockstep run goes on (tools/Resume.hpp)
+  bool composed = false;  // every component in this process, in-process bus (rig/ComposedRun.hpp)
+  std::string resume;     // --resume DIR: a killed lockstep run goes on (rig/Resume.hpp)
   bool restart = false;   // --restart: paced, a component that dies is started again
   int max_restarts = 20;  // --max-restarts
 };
@@ -136,7 +136,7 @@ bool enableSecurity(const std::string& dir, const bus::Scenario& scenario) {
   return true;
 }
 
-/// --resume DIR: DIR's own scenario, its recording readied (tools/Resume.hpp), its
+/// --resume DIR: DIR's own scenario, its recording readied (rig/Resume.hpp), its
 /// earlier logs kept aside. False (after saying why) when it cannot be resumed.
 bool prepareResumedRun(const RunOptions& o, const bus::Scenario& original, bus::Scenario& scenario) {
   if (!o.out.empty() && fs::path(o.out) != fs::path(o.resume)) {
@@ -161,7 +161,7 @@ bool prepareResumedRun(const RunOptions& o, const bus::Scenario& original, bus::
   }
   const std::string recording = (fs::path(o.resume) / "recording.sqlite").string();
   try {
-    const auto after = tools::prepareResume(scenario, recording);
+    const auto after = rig::prepareResume(scenario, recording);
     if (!after) {
       fs::remove(recording);
       fs::remove(recording + "-wal");
@@ -190,12 +190,12 @@ bool prepareResumedRun(const RunOptions& o, const bus::Scenario& original, bus::
 /// The summary of a run that failed: what its recording shows, where it
 /// can still be read, with `completed: false` and the launcher's reason.
 void writeFailedSummary(const bus::Scenario& scenario, const std::string& run_dir,
-                        const tools::LaunchResult& result) {
+                        const rig::LaunchResult& result) {
   nlohmann::ordered_json summary;
   try {
     summary = scenario.spacecraft_count > 1
-                  ? tools::fleetSummary(scenario, run_dir, result)
-                  : tools::summarize(scenario, (fs::path(run_dir) / "recording.sqlite").string(), result);
+                  ? rig::fleetSummary(scenario, run_dir, result)
+                  : analysis::summarize(scenario, (fs::path(run_dir) / "recording.sqlite").string(), result);
   } catch (const std::exception& e) {
     summary["scenario"] = scenario.name;
     summary["summary_error"] = e.what();
@@ -209,7 +209,7 @@ int run(const RunOptions& o, nlohmann::ordered_json* summary_out = nullptr) {
   bus::Scenario original;
   if (!loadChecked(o.scenario, o.out, original)) return kExitBadInput;
   const std::string run_dir = !o.resume.empty() ? o.resume
-                              : o.out.empty()   ? tools::defaultRunDirectory(original.name)
+                              : o.out.empty()   ? rig::defaultRunDirectory(original.name)
                                                 : o.out;
   bus::Scenario scenario;
   if (!o.resume.empty()) {
@@ -238,13 +238,13 @@ int run(const RunOptions& o, nlohmann::ordered_json* summary_out = nullptr) {
         return kExitBadInput;
       }
     }
-    const std::string resolved = tools::writeRunScenario(o.scenario, run_dir, overrides);
+    const std::string resolved = rig::writeRunScenario(o.scenario, run_dir, overrides);
     if (!loadChecked(resolved, run_dir, scenario)) return kExitBadInput;
   } catch (const std::exception& e) {
     std::cerr << "error: " << e.what() << "\n";
     return kExitBadInput;
   }
-  if (const auto problems = o.composed ? tools::composedProblems(scenario) : std::vector<std::string>{};
+  if (const auto problems = o.composed ? rig::composedProblems(scenario) : std::vector<std::string>{};
       !problems.empty()) {
     std::cerr << "error: " << o.scenario << ": cannot run composed (--composed):\n";
     for (const auto& p : problems) std::cerr << "  " << o.scenario << ": " << p << "\n";
@@ -259,7 +259,7 @@ int run(const RunOptions& o, nlohmann::ordered_json* summary_out = nullptr) {
     return kExitBadInput;
   }
   const std::string bin_dir = fs::canonical("/proc/self/exe").parent_path().string();
-  tools::LaunchOptions launch_options{bin_dir, run_dir, fs::absolute(scenario.file).string(),
+  rig::LaunchOptions launch_options{bin_dir, run_dir, fs::absolute(scenario.file).string(),
                                       o.log_level, !o.quiet};
   if (!parsePrefixes(o.prefixes, scenario, launch_options.prefixes)) return kExitBadInput;
   if (o.restart && (scenario.pacing != bus::Pacing::kPaced || o.composed)) {
@@ -275,18 +275,18 @@ int run(const RunOptions& o, nlohmann::ordered_json* summary_out = nullptr) {
               << " components in this process, no DDS) into " << run_dir << "\n";
   } else if (!o.composed) {
     // Segments left by processes killed in an earlier run go first.
-    tools::cleanStaleSharedMemory(tools::kShmGrace);
+    rig::cleanStaleSharedMemory(rig::kShmGrace);
     if (!o.quiet) {
       std::cerr << "flatsat: running '" << scenario.name << "' (" << scenario.components.size()
                 << " processes, domain " << bus::domainFromEnvironment(scenario.domain_id)
                 << ") into " << run_dir << "\n";
     }
   }
-  tools::LaunchResult result;
+  rig::LaunchResult result;
   try {
-    result = o.composed                      ? tools::runComposed(scenario, launch_options)
-             : scenario.spacecraft_count > 1 ? tools::launchFleet(scenario, launch_options)
-                                             : tools::launch(scenario, launch_options);
+    result = o.composed                      ? rig::runComposed(scenario, launch_options)
+             : scenario.spacecraft_count > 1 ? rig::launchFleet(scenario, launch_options)
+                                             : rig::launch(scenario, launch_options);
   } catch (const std::exception& e) {  // the launcher's own participant (FLATSAT_PEERS, ...)
     std::cerr << "error: " << e.what() << "\n";
     return kExitFailed;
@@ -294,7 +294,7 @@ int run(const RunOptions& o, nlohmann::ordered_json* summary_out = nullptr) {
   // Segments of processes killed mid-run and restarted (--restart) go now; those
   // of processes killed just now stay for kShmGrace: the next start or
   // `flatsat clean-shm` removes them.
-  if (!o.composed) tools::cleanStaleSharedMemory(tools::kShmGrace);
+  if (!o.composed) rig::cleanStaleSharedMemory(rig::kShmGrace);
   if (!result.ok) {
     std::cerr << "error: " << result.failure << "\n";
     writeFailedSummary(scenario, run_dir, result);
@@ -302,7 +302,7 @@ int run(const RunOptions& o, nlohmann::ordered_json* summary_out = nullptr) {
   }
   if (!o.resume.empty()) {
     try {
-      if (const auto differing = tools::resumeMismatches((fs::path(run_dir) / "recording.sqlite").string());
+      if (const auto differing = rig::resumeMismatches((fs::path(run_dir) / "recording.sqlite").string());
           differing > 0) {
         std::cerr << "error: --resume: " << differing << " samples of the recorded steps came out different "
                   << "in the resumed rig (see " << run_dir << "/logs/recorder.log): the recording is not one run\n";
@@ -316,8 +316,8 @@ int run(const RunOptions& o, nlohmann::ordered_json* summary_out = nullptr) {
   nlohmann::ordered_json summary;
   try {
     summary = scenario.spacecraft_count > 1
-                  ? tools::fleetSummary(scenario, run_dir, result)
-                  : tools::summarize(scenario, (fs::path(run_dir) / "recording.sqlite").string(), result);
+                  ? rig::fleetSummary(scenario, run_dir, result)
+                  : analysis::summarize(scenario, (fs::path(run_dir) / "recording.sqlite").string(), result);
   } catch (const std::exception& e) {  // the recording is kept as it is for a look
     std::cerr << "error: the run ended but its summary failed: " << e.what() << "\n";
     return kExitFailed;
@@ -340,12 +340,12 @@ int run(const RunOptions& o, nlohmann::ordered_json* summary_out = nullptr) {
     std::cout << summary.dump(2) << "\n";
   } else if (!o.quiet) {
     std::cout << "summary (" << (fs::path(run_dir) / "summary.json").string() << "):\n"
-              << tools::summaryTable(summary);
+              << analysis::summaryTable(summary);
   }
   if (o.plots) {
     // A run that worked stays a success when only its figures fail (no gnuplot).
     const fs::path plots = fs::path(run_dir) / "plots";
-    const fs::path first = tools::spacecraftDirectory(run_dir, scenario.spacecraft_count, 0);
+    const fs::path first = rig::spacecraftDirectory(run_dir, scenario.spacecraft_count, 0);
     if (tools::plotRecording((first / "recording.sqlite").string(), plots.string(),
                              false) != 0) {
       std::cerr << "flatsat: warning: the figures were not drawn; the run itself succeeded\n";
@@ -475,9 +475,9 @@ int resumeBench(RunOptions o, const std::string& prefix, int pairs) {
     ratio_runs += buffer;
   }
   std::printf("%s_steps=%llu\n", prefix.c_str(), static_cast<unsigned long long>(steps));
-  std::printf("%s_record_steps_per_s=%.1f\n", prefix.c_str(), tools::quantile(recorded, 0.5));
-  std::printf("%s_check_steps_per_s=%.1f\n", prefix.c_str(), tools::quantile(checked, 0.5));
-  std::printf("%s_check_speed_ratio=%.3f\n", prefix.c_str(), tools::quantile(ratios, 0.5));
+  std::printf("%s_record_steps_per_s=%.1f\n", prefix.c_str(), analysis::quantile(recorded, 0.5));
+  std::printf("%s_check_steps_per_s=%.1f\n", prefix.c_str(), analysis::quantile(checked, 0.5));
+  std::printf("%s_check_speed_ratio=%.3f\n", prefix.c_str(), analysis::quantile(ratios, 0.5));
   std::printf("%s_check_speed_ratio_runs=%s\n", prefix.c_str(), ratio_runs.c_str());
   return 0;
 }
@@ -495,7 +495,7 @@ int resumeFigures(const std::string& scenario, double duration_s, bool quick) {
   o.plots = false;
   o.log_level = "warn";
   if (const int rc = resumeBench(o, "resume", quick ? 1 : kRunsPerFigure); rc != 0) return rc;
-  if (!tools::composedProblems(loaded).empty()) return 0;
+  if (!rig::composedProblems(loaded).empty()) return 0;
   o.composed = true;
   o.overrides.push_back("duration_s=" + std::to_string(kComposedResumeSeconds));
   return resumeBench(o, "resume_composed", kRunsPerFigure);
@@ -527,8 +527,8 @@ int bench(const std::string& scenario, double duration_s, bool quick) {
     startups.push_back(1e3 * summary["startup_seconds"].get<double>());
     fs::remove_all(out);
   }
-  const double limit = tools::quantile(limits, 0.5);
-  const double lockstep = tools::quantile(locksteps, 0.5);
+  const double limit = analysis::quantile(limits, 0.5);
+  const double lockstep = analysis::quantile(locksteps, 0.5);
   std::printf("limit_steps_per_s=%.1f\n", limit);
   std::printf("limit_steps_per_s_runs=%s\n", joined(limits).c_str());
   std::printf("scenario=%s\n", summary["scenario"].get<std::string>().c_str());
@@ -539,16 +539,16 @@ int bench(const std::string& scenario, double duration_s, bool quick) {
   // The target: the rig should reach >= 0.75 of the bare graph's rate.
   std::printf("lockstep_fraction_of_limit=%.3f\n", lockstep / limit);
   std::printf("speed_factor=%.1f\n", lockstep * loaded.step_s);
-  std::printf("startup_ms=%.0f\n", tools::quantile(startups, 0.5));
+  std::printf("startup_ms=%.0f\n", analysis::quantile(startups, 0.5));
   // The same scenario composed into one process, its recording decimated to
   // 1 Hz as 42 writes its output files (the composed figure).
-  if (!tools::composedProblems(loaded).empty()) {
+  if (!rig::composedProblems(loaded).empty()) {
     std::cerr << "flatsat bench: " << scenario << " cannot run composed; no composed figures\n";
     if (const int rc = resumeFigures(scenario, duration_s, quick); rc != 0) return rc;
     return pacedBench(scenario, paced_s);
   }
   o.composed = true;
-  o.overrides.push_back(tools::recordOnceASecond(loaded.step_s));
+  o.overrides.push_back(rig::recordOnceASecond(loaded.step_s));
   // At least 20,000 s (200,000 steps, a second or two): 600 s composed is
   // 50 ms of stepping, where the first steps' page faults and a noisy
   // neighbour's moment decide the figure. Three runs, the median (the
@@ -561,7 +561,7 @@ int bench(const std::string& scenario, double duration_s, bool quick) {
     composed_rates.push_back(summary["steps_per_second"].get<double>());
     fs::remove_all(out);
   }
-  const double composed_rate = tools::quantile(composed_rates, 0.5);
+  const double composed_rate = analysis::quantile(composed_rates, 0.5);
   std::printf("composed_steps=%llu\n", summary["steps"].get<unsigned long long>());
   std::printf("composed_steps_per_s=%.1f\n", composed_rate);
   std::printf("composed_steps_per_s_runs=%s\n", joined(composed_rates).c_str());
@@ -672,7 +672,7 @@ int main(int argc, char** argv) {
   }
   if (clean_cmd->parsed()) {
     const std::chrono::seconds min_age{static_cast<long>(std::ceil(clean_min_age_s))};
-    for (const auto& name : tools::cleanStaleSharedMemory(min_age)) std::cout << "removed " << name << "\n";
+    for (const auto& name : rig::cleanStaleSharedMemory(min_age)) std::cout << "removed " << name << "\n";
     return 0;
   }
   if (bench_cmd->parsed() && bench_middleware) {

@@ -112,11 +112,11 @@ EstimatorNode::EstimatorNode(bus::Bus& bus, bus::NodeOptions options,
   }
 }
 
-void EstimatorNode::stepS0(const bus::StepContext& ctx, const msg::GyroReading& gyro,
+void EstimatorNode::stepFieldFromMomentum(const bus::StepContext& ctx, const msg::GyroReading& gyro,
                            const Eigen::Vector3d& sun_B_unit, bool sun_valid,
                            const onboard::ReferenceVectors& reference) {
   const auto tach = tach_->at(ctx.step);
-  S0EstimatorInput in;
+  FieldFromMomentumInput in;
   in.wheel_speed_rad_s = bus::vec4(tach.wheel_speed_rad_s());
   in.tach_valid = tach.valid();
   in.w_B_rad_s = bus::vec3(gyro.w_body_rad_s());
@@ -130,7 +130,7 @@ void EstimatorNode::stepS0(const bus::StepContext& ctx, const msg::GyroReading& 
     if (window->phase() == msg::CoilWindowPhase::COIL_DONE) {
       in.completed = std::make_pair(
           window->request_id(),
-          S0Window{window->t0_ns(), window->t1_ns(), window->pulse_end_ns(), window->t2_ns(),
+          DipoleWindow{window->t0_ns(), window->t1_ns(), window->pulse_end_ns(), window->t2_ns(),
                    bus::vec3(window->m_body_Am2())});
     } else if (window->phase() == msg::CoilWindowPhase::COIL_REFUSED) {
       in.refused = window->request_id();
@@ -232,7 +232,7 @@ void EstimatorNode::step(const bus::StepContext& ctx) {
   const Vectors v = toVectors(sun, magnetometer);
   const onboard::ReferenceVectors reference = reference_.step(ctx.sim_time_ns);
   if (s0_) {
-    stepS0(ctx, gyro, v.sun_B_unit, v.sun_valid, reference);
+    stepFieldFromMomentum(ctx, gyro, v.sun_B_unit, v.sun_valid, reference);
   } else {
     msg::CoilRequest none;
     bus::stamp(none.header(), ctx, name());
@@ -334,7 +334,7 @@ EstimatorNodeParams readParams(const bus::Scenario& scenario, const vehicle::Veh
     auto s0 = r.section("s0");
     bool enabled = false;
     s0.read("enabled", enabled);
-    S0EstimatorParams q;
+    FieldFromMomentumParams q;
     q.wheels = wheelGeometryOf(known.body);
     s0.read("quiet_s", q.quiet_s, "s");
     s0.read("pulse_s", q.pulse_s, "s");

@@ -10,7 +10,7 @@
 #include "components/estimator/Mekf.hpp"
 #include "components/common/onboard/ReferenceModel.hpp"
 #include "vehicle/VehicleDescription.hpp"
-#include "components/estimator/S0Estimator.hpp"
+#include "components/estimator/FieldFromMomentumEstimator.hpp"
 
 namespace flatsat::estimator {
 
@@ -25,7 +25,7 @@ struct EstimatorNodeParams {
   AttitudeEstimatorParams filter;                     // kMahony; its use_magnetometer for both
   MekfParams mekf;                                    // used by kMekf
   onboard::ReferenceModelParams reference;
-  std::optional<S0EstimatorParams> s0;  // seed S0 field estimate (components.<name>.s0.enabled)
+  std::optional<FieldFromMomentumParams> s0;  // seed S0 field estimate (components.<name>.s0.enabled)
   double jd_epoch_utc = 0.0;            // [d] for the ecliptic of date
 };
 
@@ -62,9 +62,9 @@ class EstimatorNode final : public bus::Component {
   std::optional<unsigned> status_bits_;  // the sensor states the last status text told
   std::optional<Eigen::Vector3d> previous_w_B_rad_s_;  // [rad/s] gyro rate of the previous step
 
-  void stepS0(const bus::StepContext& ctx, const msg::GyroReading& gyro, const Eigen::Vector3d& sun_B_unit,
+  void stepFieldFromMomentum(const bus::StepContext& ctx, const msg::GyroReading& gyro, const Eigen::Vector3d& sun_B_unit,
               bool sun_valid, const onboard::ReferenceVectors& reference);
-  std::optional<S0Estimator> s0_;
+  std::optional<FieldFromMomentumEstimator> s0_;
   double jd_epoch_utc_;
   bus::InputOf<bus::topics::kWheelTach>* tach_ = nullptr;           // S0
   bus::InputOf<bus::topics::kCoilWindow>* coil_window_ = nullptr;   // S0, feedback

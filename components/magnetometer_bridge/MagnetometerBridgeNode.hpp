@@ -18,7 +18,7 @@ struct MagnetometerBridgeNodeParams {
   int baud = 115200;   // [baud] line rate, 9600..115200
 };
 
-/// Hardware bridge (issue "swap-in"): frames from the device's serial line out
+/// Hardware bridge (architecture, "Hardware swap-in"): frames from the device's serial line out
 /// as flatsat/magnetometer at the bridge ownership strength, so its samples win
 /// over the emulator's while it lives; when it dies its liveliness lease runs
 /// out and readers fall back to the emulator. Not stepped: each sample is

@@ -135,7 +135,7 @@ UnloadingControllerNode::UnloadingControllerNode(bus::Bus& bus, bus::NodeOptions
   }
   switch (params.field_source) {
     case FieldSource::kMagnetometer: magnetometer_ = &addInput(bus::topics::kMagnetometer); break;
-    case FieldSource::kS0Estimate:
+    case FieldSource::kFieldFromMomentum:
       field_estimate_ = &addInput(bus::topics::kFieldEstimate);
       coil_request_ = &addInput(bus::topics::kCoilRequest);
       break;
@@ -314,7 +314,7 @@ UnloadingControllerNodeParams readParams(const bus::Scenario& scenario, const ve
     r.problem("quiet_fraction", "must be in [0, 1)");
   }
   if (source == "s0_estimate") {
-    node.field_source = FieldSource::kS0Estimate;
+    node.field_source = FieldSource::kFieldFromMomentum;
   } else if (source == "model_attitude") {
     node.field_source = FieldSource::kModelAttitude;
   } else if (source != "magnetometer") {

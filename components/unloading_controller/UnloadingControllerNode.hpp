@@ -20,7 +20,7 @@ namespace flatsat::unloading_controller {
 /// Where the magnetic laws take the field from.
 enum class FieldSource {
   kMagnetometer,  ///< flatsat/magnetometer
-  kS0Estimate,    ///< flatsat/field_estimate (seed S0, no magnetometer); serves coil requests
+  kFieldFromMomentum,    ///< flatsat/field_estimate (seed S0, no magnetometer); serves coil requests
   kModelAttitude, ///< onboard field model turned into body axes by flatsat/attitude_estimate
 };
 
@@ -74,8 +74,8 @@ class UnloadingControllerNode final : public bus::Component {
   bus::InputOf<bus::topics::kWheelTach>& tach_ = addInput(bus::topics::kWheelTach);
   LastValid<msg::WheelTachReading> last_tach_;  // rides through tachometer dropouts
   bus::InputOf<bus::topics::kMagnetometer>* magnetometer_ = nullptr;    // kMagnetometer
-  bus::InputOf<bus::topics::kFieldEstimate>* field_estimate_ = nullptr;  // kS0Estimate
-  bus::InputOf<bus::topics::kCoilRequest>* coil_request_ = nullptr;      // kS0Estimate
+  bus::InputOf<bus::topics::kFieldEstimate>* field_estimate_ = nullptr;  // kFieldFromMomentum
+  bus::InputOf<bus::topics::kCoilRequest>* coil_request_ = nullptr;      // kFieldFromMomentum
   bus::InputOf<bus::topics::kAttitudeEstimate>* attitude_ = nullptr;     // kModelAttitude
   bus::WriterOf<bus::topics::kDipoleCmd>& command_ = addOutput(bus::topics::kDipoleCmd);
   bus::WriterOf<bus::topics::kCoilWindow>& coil_window_ = addOutput(bus::topics::kCoilWindow);

@@ -73,7 +73,7 @@ SensorFault scenarioFault(SensorFaultKind kind, std::uint64_t first, std::uint64
 }  // namespace
 
 TEST_CASE("magnetometer faults from the scenario and the bus act on the readings",
-          "[component][dds][faults]") {
+          "[magnetometer][component][dds][faults]") {
   const std::uint32_t domain = test::testDomain();
   magnetometer::MagnetometerNode::Params params;
   params.model.noise_T = 0.0;  // readings equal the truth unless a fault acts

@@ -54,7 +54,7 @@ sim::ThrusterParams thruster(Eigen::Vector3d r, Eigen::Vector3d d) {
 }  // namespace
 
 TEST_CASE("thruster sequencer node reads only the Sun sensor and fires the lowering couple",
-          "[component][dds]") {
+          "[thruster_sequencer][component][dds]") {
   const std::uint32_t domain = test::testDomain();
   thruster_sequencer::ThrusterSequencerParams node_params;
   auto& params = node_params.angle_only;

@@ -111,7 +111,7 @@ unloading_controller::MagneticModesParams crossProduct(double max_dipole_Am2) {
 }  // namespace
 
 TEST_CASE("unloading controller node answers every step with the cross-product law",
-          "[component][dds]") {
+          "[unloading_controller][component][dds]") {
   const std::uint32_t domain = test::testDomain();
   const auto params = crossProduct(kMaxDipole);  // initial mode: unload
 
@@ -147,7 +147,7 @@ TEST_CASE("unloading controller node answers every step with the cross-product l
   }
 }
 
-TEST_CASE("a mode command on flatsat/unloading_mode_cmd switches the node to B-dot", "[component][dds][bdot]") {
+TEST_CASE("a mode command on flatsat/unloading_mode_cmd switches the node to B-dot", "[unloading_controller][component][dds][bdot]") {
   const std::uint32_t domain = test::testDomain();
   unloading_controller::MagneticModesParams params;  // initial mode: unload
   params.unload.max_dipole_Am2 = Eigen::Vector3d::Constant(kMaxDipole);
@@ -186,7 +186,7 @@ TEST_CASE("a mode command on flatsat/unloading_mode_cmd switches the node to B-d
 }
 
 TEST_CASE("the unloading controller takes gain and threshold changes in flight, refuses bad ones",
-          "[component][dds][cmd]") {
+          "[unloading_controller][component][dds][cmd]") {
   const std::uint32_t domain = test::testDomain();
   const auto params = crossProduct(1e6);  // never saturates: m ∝ k
   const bus::Schedule node_view = {

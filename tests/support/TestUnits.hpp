@@ -16,6 +16,9 @@ using flatsat::sim::kPi;
 inline constexpr double kDeg = kPi / 180.0;                  ///< [rad] one degree
 inline constexpr double kMu = flatsat::sim::kMuEarth_m3_s2;  ///< [m³/s²]
 inline constexpr std::int64_t kSecond = 1'000'000'000;       ///< [ns] one second
+/// The rigs' usual step, 10 Hz, as the sensor and filter tests run it.
+inline constexpr std::int64_t kStep10Hz_ns = 100'000'000;     ///< [ns]
+inline constexpr double kStep10Hz_s = 0.1;                    ///< [s]
 
 /// [ns] the nearest to t_s seconds.
 inline std::int64_t ns(double t_s) { return std::llround(t_s * 1e9); }

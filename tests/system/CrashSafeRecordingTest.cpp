@@ -92,7 +92,7 @@ std::string readFile(const std::string& path) {
 }  // namespace
 
 TEST_CASE("SIGKILL of the recorder or the dynamics server leaves a readable recording, and --resume completes it",
-          "[system][crash]") {
+          "[recorder][system][crash]") {
   test::exportTestDomain();
   const std::string reference_dir = test::freshDir("crash-reference");
   const auto reference_run =
@@ -185,7 +185,7 @@ TEST_CASE("SIGKILL of the recorder or the dynamics server leaves a readable reco
   fs::remove_all(reference_dir);
 }
 
-TEST_CASE("flatsat run --resume refuses, with the reason, what it cannot continue as one run", "[system][crash]") {
+TEST_CASE("flatsat run --resume refuses, with the reason, what it cannot continue as one run", "[recorder][system][crash]") {
   test::exportTestDomain();
   const std::string out = test::freshDir("resume-refused");
   const auto first = test::runCommand(test::kFlatsat + " run " + kDefault + " --composed -q --no-plots --out " + out +

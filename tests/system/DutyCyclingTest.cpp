@@ -69,7 +69,7 @@ double slope(const Samples& s, const std::string& dipole_key, std::size_t& used)
 
 }  // namespace
 
-TEST_CASE("duty-cycling keeps the torquers' own field out of the magnetometer", "[system][magnetic][composed]") {
+TEST_CASE("duty-cycling keeps the torquers' own field out of the magnetometer", "[unloading_controller][system][magnetic][composed]") {
   SECTION("coils on at the sample: the reading holds C m exactly") {
     const auto s = run("on", 0.0, false);
     std::size_t used = 0;

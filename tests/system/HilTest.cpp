@@ -16,7 +16,7 @@
 using namespace flatsat;
 
 TEST_CASE("a magnetometer bridge takes over mid-run and the emulator takes back when it dies",
-          "[system][paced][hil]") {
+          "[magnetometer_bridge][system][paced][hil]") {
   const std::string scenario = std::string(FLATSAT_SCENARIO_DIR) + "/hil_magnetometer.yaml";
   const std::string out = test::freshDir("hil");
   // Shorter than the scenario (120 s, bridge at 30 s): the bridge starts 10 s after

@@ -57,7 +57,7 @@ std::vector<std::vector<double>> studyRows(const std::string& name, std::size_t 
 
 }  // namespace
 
-TEST_CASE("B-dot detumbles the rig from 10 deg/s below 0.2 deg/s within 3 orbits", "[system][bdot]") {
+TEST_CASE("B-dot detumbles the rig from 10 deg/s below 0.2 deg/s within 3 orbits", "[unloading_controller][system][bdot]") {
   // Seed 2 of `flatsat study detumble`, run over DDS with every component its own process.
   const auto s = runScenario("detumble.yaml", "detumble", "--seed 2");
   INFO(s.dump(2));
@@ -68,7 +68,7 @@ TEST_CASE("B-dot detumbles the rig from 10 deg/s below 0.2 deg/s within 3 orbits
   CHECK(s["coil_duty"].get<double>() <= 1.0);
 }
 
-TEST_CASE("B-dot: all 50 seeded tumbles of 10 deg/s below 0.2 deg/s within 3 orbits", "[system][bdot]") {
+TEST_CASE("B-dot: all 50 seeded tumbles of 10 deg/s below 0.2 deg/s within 3 orbits", "[unloading_controller][system][bdot]") {
   // `flatsat study detumble` runs detumble.yaml's plant, magnetometer and controller without
   // DDS; a case counts when its rate is below 0.2 deg/s within 3 orbits and stays there.
   const auto rows = studyRows("detumble", 5);
@@ -81,7 +81,7 @@ TEST_CASE("B-dot: all 50 seeded tumbles of 10 deg/s below 0.2 deg/s within 3 orb
   CHECK(rows.size() == 50);
 }
 
-TEST_CASE("S4 spin capture holds body z within 5 deg of the orbit normal at 2 deg/s within 5 orbits", "[system][bdot]") {
+TEST_CASE("S4 spin capture holds body z within 5 deg of the orbit normal at 2 deg/s within 5 orbits", "[unloading_controller][system][bdot]") {
   const auto s = runScenario("s4_spin.yaml", "s4spin", "--seed 3");
   INFO(s.dump(2));
   REQUIRE_FALSE(s["time_to_capture_s"].is_null());
@@ -91,7 +91,7 @@ TEST_CASE("S4 spin capture holds body z within 5 deg of the orbit normal at 2 de
   CHECK(s["coil_duty"].get<double>() > 0.0);
 }
 
-TEST_CASE("S4 spin capture: all 50 seeded tumbles captured within 5 orbits", "[system][bdot]") {
+TEST_CASE("S4 spin capture: all 50 seeded tumbles captured within 5 orbits", "[unloading_controller][system][bdot]") {
   // `flatsat study spin` runs s4_spin.yaml's plant, magnetometer and controller
   // without DDS; each row is judged on the truth over the whole run.
   const auto rows = studyRows("spin", 9);

@@ -36,7 +36,7 @@ std::string finishedRun(const std::string& tag, int duration_s) {
 
 TEST_CASE("a replayed recording of the estimator's inputs reproduces its recorded outputs "
           "exactly in lockstep",
-          "[system][tools][replay]") {
+          "[recorder][system][tools][replay]") {
   const std::string run = finishedRun("replay", 10);  // steps 0..100
   const std::string rerun = run + "/rerun";
   fs::create_directories(rerun);
@@ -72,7 +72,7 @@ TEST_CASE("a replayed recording of the estimator's inputs reproduces its recorde
 }
 
 TEST_CASE("record attached to a running rig stores the rig's own recorder's samples",
-          "[system][tools][record]") {
+          "[recorder][system][tools][record]") {
   test::exportTestDomain();
   const std::string run = test::freshDir("record-rig");
   const std::string attached = run + "-attached.sqlite";

@@ -19,7 +19,7 @@ const std::string kS0 = std::string(FLATSAT_SCENARIO_DIR) + "/s0_no_magnetometer
 }
 
 TEST_CASE("S0 closed loop without a magnetometer keeps the momentum bounded over 5 orbits",
-          "[system][slow][s0]") {
+          "[estimator][system][slow][s0]") {
   // Composed (ComposedTest: the same recording as the multi-process rig), at the
   // scenario's own 0.1 s frame.
   const auto run = test::runScenario(kS0, test::freshDir("s0"), "--composed");
@@ -41,7 +41,7 @@ TEST_CASE("S0 closed loop without a magnetometer keeps the momentum bounded over
 }
 
 TEST_CASE("S0 accuracy at the best setting: field under 5 %, roll under 2 deg",
-          "[system][s0]") {
+          "[estimator][system][s0]") {
   // flatsat study s0's best row (docs/s0_study.md): 60 s windows, the whole x
   // coil, settle and quiet interval after the pulse; one orbit of the default
   // orbit with the plant's disturbances (gravity gradient, drag, solar pressure).
@@ -61,7 +61,7 @@ TEST_CASE("S0 accuracy at the best setting: field under 5 %, roll under 2 deg",
 }
 
 TEST_CASE("S0 takes the unloading pulse in progress as its window when the law drives along x",
-          "[system][slow][s0]") {
+          "[estimator][system][slow][s0]") {
   // s0.law_pulse_min_Am2: when the cross-product law (on the S0 estimate) drives at least
   // 50 A m² along x, mostly along x, the coil owner holds the law's own dipole as the pulse,
   // and the estimator solves the window with that dipole (any direction with |m̂x| >= 0.5).

@@ -58,7 +58,7 @@ void checkRule(const nlohmann::json& s) {
 }  // namespace
 
 TEST_CASE("S1 worked example over the bus: n = 20 first, braking by the rule, settles within ±1 deg",
-          "[system][s1]") {
+          "[thruster_sequencer][system][s1]") {
   const auto s = runExample("example", "");
   INFO(s.dump(2));
   // The couple and the inertia give the example's pulse: 1 N m · 0.1 s / (180/π kg m²).
@@ -75,7 +75,7 @@ TEST_CASE("S1 worked example over the bus: n = 20 first, braking by the rule, se
 }
 
 TEST_CASE("S1 over the bus from another start (--seed, --set angle and rate) follows the rule and settles",
-          "[system][s1]") {
+          "[thruster_sequencer][system][s1]") {
   const auto s = runExample("varied", "--seed 7 --set 'initial.sun_offset_rad=0.5 deg' "
                                       "--set 'initial.w_body_rad_s=[0, -0.5 deg/s, 0]'");
   INFO(s.dump(2));

@@ -63,7 +63,7 @@ double quantile(const std::vector<double>& sorted, double q) {
 }  // namespace
 
 TEST_CASE("S2 at 400 km: coils and flaps meet the demanded torque, the flaps with its component along B",
-          "[system][s2]") {
+          "[unloading_controller][system][s2]") {
   // Composed: ComposedTest shows s2_aero records the same over DDS, every component its own process.
   const std::string out = test::freshDir("s2-aero");
   const auto run = test::runScenario(kScenario, out, "--composed", true);
@@ -90,7 +90,7 @@ TEST_CASE("S2 at 400 km: coils and flaps meet the demanded torque, the flaps wit
 }
 
 TEST_CASE("S2 at 400 km: less flap drag than flaps alone, and the wheels full without unloading",
-          "[system][s2]") {
+          "[unloading_controller][system][s2]") {
   const auto seed = test::runScenario(kScenario, test::freshDir("s2-seed"), "--composed").summary;
   const auto alone =
       test::runScenario(kScenario, test::freshDir("s2-alone"),
@@ -107,7 +107,7 @@ TEST_CASE("S2 at 400 km: less flap drag than flaps alone, and the wheels full wi
   CHECK(seed["wheel_momentum_Nms_end"].get<double>() < 0.2 * off["wheel_momentum_Nms_end"].get<double>());
 }
 
-TEST_CASE("S2 at 400 km: a failed flap is replaced and the torque still met", "[system][s2]") {
+TEST_CASE("S2 at 400 km: a failed flap is replaced and the torque still met", "[unloading_controller][system][s2]") {
   const std::string out = test::freshDir("s2-failed");
   const auto s =
       test::runScenario(kScenario, out, "--composed --set components.unloading_controller.aero.failed_flap=4", true)

@@ -166,7 +166,7 @@ int checkFirings(const FlownYear& year, const std::string& state, int at_least) 
 }  // namespace
 
 TEST_CASE("S3 in the rig: a year at 75°E in each state holds the box, flying Table I, never in the shadow",
-          "[system][s3]") {
+          "[station_keeping][system][s3]") {
   const std::vector<std::pair<std::string, std::string>> states{
       {"geo_nominal.yaml", "nominal"}, {"geo_fail_22_28.yaml", "22/28"},
       {"geo_fail_20_30.yaml", "20/30"}, {"geo_fail_24_26.yaml", "24/26"}};
@@ -199,7 +199,7 @@ TEST_CASE("S3 in the rig: a year at 75°E in each state holds the box, flying Ta
 }
 
 TEST_CASE("S3 in the rig: without the MD firings the same torques fill the wheels within the year",
-          "[system][s3]") {
+          "[station_keeping][system][s3]") {
   // The nominal state with no MD firing: nothing takes the solar-pressure
   // torque out, and the wheels reach their limit; what bounds them in the
   // case above is the dumping plan.
@@ -213,14 +213,14 @@ TEST_CASE("S3 in the rig: without the MD firings the same torques fill the wheel
 }
 
 TEST_CASE("S3 in the rig: a thruster failing mid-run switches the plan to its pair's row of Table I",
-          "[system][s3]") {
+          "[station_keeping][system][s3]") {
   // NE(24) fails on day 3 of a 9-day run: the plans made from then on are the
   // 24/26 row's, and once the last plan made before it has been flown no
   // firing asks for NE(24) or SW(26).
   const double failure_s = 3 * 86400.0;
   const FlownYear run = fly("geo_nominal.yaml",
                             " --set duration_s=777600 --set components.recorder.record_every_steps=1"
-                            " --set 'components.dynamics_server.faults=[{kind: thruster_failed, channel: 2, start_s: " +
+                            " --set 'spacecraft.faults=[{kind: thruster_failed, channel: 2, start_s: " +
                                 std::to_string(failure_s) + "}]'");
   std::uint64_t first_failed_plan_step = 0;
   for (const auto& plan : run.plans) {

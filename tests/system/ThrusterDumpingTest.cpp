@@ -15,7 +15,7 @@ namespace fs = std::filesystem;
 using namespace flatsat;
 
 TEST_CASE("thruster couples dump wheel momentum from 90 % to under 10 % of capacity within 1 deg pointing",
-          "[system][dumping]") {
+          "[thruster_sequencer][system][dumping]") {
   test::exportTestDomain();
   const fs::path out = fs::temp_directory_path() / ("flatsat-test-dumping-" + std::to_string(::getpid()));
   fs::remove_all(out);

@@ -10,7 +10,7 @@
 using namespace flatsat;
 
 TEST_CASE("cross-product unloading holds the wheels inside its start threshold over 10 orbits",
-          "[system][slow][unloading]") {
+          "[unloading_controller][system][slow][unloading]") {
   const std::string scenario = std::string(FLATSAT_SCENARIO_DIR) + "/unloading_10orbits.yaml";
   // Composed (ComposedTest: the same recording as the multi-process rig): ten orbits in seconds.
   const auto on = test::runScenario(scenario, test::freshDir("u10-on"), "--composed").summary;

@@ -15,7 +15,7 @@ namespace fs = std::filesystem;
 using namespace flatsat;
 
 TEST_CASE("a checkpoint reads back what was written, and refuses another component's or a broken one",
-          "[checkpoint]") {
+          "[bus][checkpoint]") {
   const fs::path dir = fs::temp_directory_path() / ("flatsat-checkpoint-" + std::to_string(::getpid()));
   fs::create_directories(dir);
   const std::string file = (dir / "estimator.json").string();

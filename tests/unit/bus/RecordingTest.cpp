@@ -21,7 +21,7 @@ std::vector<std::pair<std::uint64_t, std::string>> visit(const Recording& r, Rec
 
 }  // namespace
 
-TEST_CASE("Recording visits a topic in step order or in arrival order", "[recording]") {
+TEST_CASE("Recording visits a topic in step order or in arrival order", "[bus][recording]") {
   const auto path = std::filesystem::temp_directory_path() /
                     ("flatsat-recording-order-" + std::to_string(::getpid()) + ".sqlite");
   std::filesystem::remove(path);
@@ -46,7 +46,7 @@ TEST_CASE("Recording visits a topic in step order or in arrival order", "[record
   std::filesystem::remove(path.string() + "-shm");
 }
 
-TEST_CASE("Rows stored sixteen to an INSERT keep their arrival order and their payloads", "[recording]") {
+TEST_CASE("Rows stored sixteen to an INSERT keep their arrival order and their payloads", "[bus][recording]") {
   const auto path = std::filesystem::temp_directory_path() /
                     ("flatsat-recording-many-" + std::to_string(::getpid()) + ".sqlite");
   std::filesystem::remove(path);
@@ -77,7 +77,7 @@ TEST_CASE("Rows stored sixteen to an INSERT keep their arrival order and their p
   std::filesystem::remove(path.string() + "-shm");
 }
 
-TEST_CASE("Recording finds a topic's last step and erases what came after a step", "[recording]") {
+TEST_CASE("Recording finds a topic's last step and erases what came after a step", "[bus][recording]") {
   const auto path = std::filesystem::temp_directory_path() /
                     ("flatsat-recording-erase-" + std::to_string(::getpid()) + ".sqlite");
   std::filesystem::remove(path);
@@ -100,7 +100,7 @@ TEST_CASE("Recording finds a topic's last step and erases what came after a step
   std::filesystem::remove(path.string() + "-shm");
 }
 
-TEST_CASE("A recording holds a sample only with its topic, source, step and every byte", "[recording]") {
+TEST_CASE("A recording holds a sample only with its topic, source, step and every byte", "[bus][recording]") {
   const auto path = std::filesystem::temp_directory_path() /
                     ("flatsat-recording-holds-" + std::to_string(::getpid()) + ".sqlite");
   std::filesystem::remove(path);
@@ -138,7 +138,7 @@ TEST_CASE("A recording holds a sample only with its topic, source, step and ever
 }
 
 TEST_CASE("A recording still open (as after a crash) answers without its index, as it does closed",
-          "[recording]") {
+          "[bus][recording]") {
   const auto path = std::filesystem::temp_directory_path() /
                     ("flatsat-recording-index-" + std::to_string(::getpid()) + ".sqlite");
   std::filesystem::remove(path);
@@ -170,7 +170,7 @@ TEST_CASE("A recording still open (as after a crash) answers without its index, 
 }
 
 TEST_CASE("A recording's writer thread keeps arrival order and hides nothing from reads or other readers",
-          "[recording]") {
+          "[bus][recording]") {
   const auto path = std::filesystem::temp_directory_path() /
                     ("flatsat-recording-writer-" + std::to_string(::getpid()) + ".sqlite");
   std::filesystem::remove(path);
@@ -207,7 +207,7 @@ TEST_CASE("A recording's writer thread keeps arrival order and hides nothing fro
   std::filesystem::remove(path.string() + "-shm");
 }
 
-TEST_CASE("A commit through a step leaves the later rows to the next commit, in their order", "[recording]") {
+TEST_CASE("A commit through a step leaves the later rows to the next commit, in their order", "[bus][recording]") {
   const auto path = std::filesystem::temp_directory_path() /
                     ("flatsat-recording-through-" + std::to_string(::getpid()) + ".sqlite");
   const auto removeAll = [&] {

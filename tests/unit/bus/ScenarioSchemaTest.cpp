@@ -55,7 +55,7 @@ std::string readFile(const fs::path& path) {
 
 }  // namespace
 
-TEST_CASE("Scenario schema: docs/scenario.md documents every key of the shipped scenarios", "[schema]") {
+TEST_CASE("Scenario schema: docs/scenario.md documents every key of the shipped scenarios", "[bus][schema]") {
   const fs::path source(FLATSAT_SOURCE_DIR);
   const std::string doc = readFile(source / "docs" / "scenario.md");
   REQUIRE_FALSE(doc.empty());

@@ -9,7 +9,7 @@ using flatsat::bus::TickLateness;
 using std::chrono::microseconds;
 
 TEST_CASE("TickLateness gives nearest-rank quantiles of the grant lateness to the microsecond",
-          "[tick_lateness]") {
+          "[bus][tick_lateness]") {
   TickLateness late;
   CHECK(late.quantileUs(0.99) == 0.0);
   // 0.5, 1.5, ..., 99.5 µs: the k-th smallest lies in bin k - 1, whose upper edge is k µs.

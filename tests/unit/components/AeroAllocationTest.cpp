@@ -39,7 +39,7 @@ Eigen::Vector3d field(std::mt19937& rng) {
 }  // namespace
 
 TEST_CASE("S2 split: coils and flaps together give the demanded torque with the least flap torque",
-          "[unit][s2]") {
+          "[unloading_controller][unit][s2]") {
   const AeroAllocation split(wide(AeroSplit::kMagneticAero));
   std::mt19937 rng(7);
   std::normal_distribution<double> n(0.0, 1.0);
@@ -75,7 +75,7 @@ TEST_CASE("S2 split: coils and flaps together give the demanded torque with the 
   CHECK(out.c_aero_B_Nm.isApprox(b_hat * b_hat.dot(polar.c_demand_B_Nm), 1e-9));
 }
 
-TEST_CASE("S2 split: less flap drag than the flaps alone for the same torques", "[unit][s2]") {
+TEST_CASE("S2 split: less flap drag than the flaps alone for the same torques", "[unloading_controller][unit][s2]") {
   const AeroAllocation seed(wide(AeroSplit::kMagneticAero));
   const AeroAllocation flaps_only(wide(AeroSplit::kFlapsOnly));
   std::mt19937 rng(11);
@@ -111,7 +111,7 @@ TEST_CASE("S2 split: less flap drag than the flaps alone for the same torques", 
   CHECK(drag_seed < 0.8 * drag_flaps);
 }
 
-TEST_CASE("S2 split: a coil or flap limit scales the whole demand, keeping its direction", "[unit][s2]") {
+TEST_CASE("S2 split: a coil or flap limit scales the whole demand, keeping its direction", "[unloading_controller][unit][s2]") {
   AeroAllocationParams p = wide(AeroSplit::kMagneticAero);
   p.max_dipole_Am2 = Eigen::Vector3d::Constant(0.2);
   const AeroAllocation split(p);
@@ -142,7 +142,7 @@ TEST_CASE("S2 split: a coil or flap limit scales the whole demand, keeping its d
   CHECK(coils.flaps.theta_rad.isZero(0.0));
 }
 
-TEST_CASE("S2 split: drag-only brakes with the flaps and leaves the torque to the coils", "[unit][s2]") {
+TEST_CASE("S2 split: drag-only brakes with the flaps and leaves the torque to the coils", "[unloading_controller][unit][s2]") {
   AeroAllocationParams p = wide(AeroSplit::kDragOnly);
   p.drag_only_angle_rad = 0.5;
   const AeroAllocation split(p);

@@ -22,8 +22,6 @@ namespace {
 const Eigen::Vector3d kSun_N = Eigen::Vector3d(0.3, 0.9, 0.2).normalized();
 const Eigen::Vector3d kField_N_T(1.5e-5, -2.0e-5, 3.5e-5);
 const Eigen::Quaterniond kAttitude0_NB(Eigen::AngleAxisd(1.0, Eigen::Vector3d(1.0, -1.0, 2.0).normalized()));
-constexpr std::int64_t kStep_ns = 100'000'000;
-constexpr double kStep_s = 0.1;
 
 /// Rotation by |w|·dt about w: the truth's attitude increment, written with Eigen's
 /// AngleAxis so it does not share code with the estimator.
@@ -65,10 +63,10 @@ struct EstimatorScenario {
   }
 
   void run(double seconds, bool sun, bool field) {
-    for (int k = 0; k < static_cast<int>(std::lround(seconds / kStep_s)); ++k) {
+    for (int k = 0; k < static_cast<int>(std::lround(seconds / kStep10Hz_s)); ++k) {
       const Eigen::Vector3d w = rate(static_cast<double>(t_ns) * 1e-9);
-      q_true = q_true * rotate(w, kStep_s);
-      t_ns += kStep_ns;
+      q_true = q_true * rotate(w, kStep10Hz_s);
+      t_ns += kStep10Hz_ns;
       out = estimator.step(measure(q_true, w + bias_true, sun, field), t_ns);
     }
   }
@@ -157,7 +155,7 @@ TEST_CASE("Estimator converges on a constant gyro bias", "[components][estimator
   CHECK(s.biasError() < 0.01 * bias_error_300s);
   CHECK(s.biasError() < 1e-6);
   CHECK(s.attitudeError() < 1e-5);
-  CHECK((s.out.w_NB_B_rad_s - EstimatorScenario::rate(static_cast<double>(s.t_ns - kStep_ns) * 1e-9)).norm() <
+  CHECK((s.out.w_NB_B_rad_s - EstimatorScenario::rate(static_cast<double>(s.t_ns - kStep10Hz_ns) * 1e-9)).norm() <
         1e-6);
   CHECK((s.out.sun_B_est_unit - s.q_true.conjugate() * kSun_N).norm() < 1e-5);
 
@@ -268,7 +266,7 @@ TEST_CASE("a restarted estimator given the old one's state goes on exactly as if
   AttitudeEstimator late{AttitudeEstimatorParams{}};
   late.restore(checkpoint);
   const auto in = measure(restarted.q_true, Eigen::Vector3d::Zero(), false, false);
-  const auto out = late.step(in, checkpoint.last_t_ns + 20 * kStep_ns);
+  const auto out = late.step(in, checkpoint.last_t_ns + 20 * kStep10Hz_ns);
   CHECK(out.initialized);
   CHECK(out.w_NB_B_rad_s.isApprox(-checkpoint.bias_B_rad_s));
   CHECK(out.q_NB.angularDistance(checkpoint.q_NB) == Approx(checkpoint.bias_B_rad_s.norm() * 2.0).epsilon(1e-9));

@@ -37,7 +37,7 @@ Eigen::Vector3d orbitNormal_N(const sim::DynamicsParams& p) {
 
 }  // namespace
 
-TEST_CASE("B-dot differences successive samples and opposes each coil to dB/dt", "[bdot]") {
+TEST_CASE("B-dot differences successive samples and opposes each coil to dB/dt", "[unloading_controller][bdot]") {
   BdotParams p;
   p.max_dipole_Am2 = Eigen::Vector3d(0.1, 0.2, 0.3);
   Bdot law(p);
@@ -49,7 +49,7 @@ TEST_CASE("B-dot differences successive samples and opposes each coil to dB/dt",
   CHECK(out.saturated);
 }
 
-TEST_CASE("proportional B-dot is -k dB/dt, clipped coil by coil", "[bdot]") {
+TEST_CASE("proportional B-dot is -k dB/dt, clipped coil by coil", "[unloading_controller][bdot]") {
   BdotParams p;
   p.shape = BdotShape::kProportional;
   p.gain_Am2_s_per_T = 1e5;
@@ -61,7 +61,7 @@ TEST_CASE("proportional B-dot is -k dB/dt, clipped coil by coil", "[bdot]") {
   CHECK(out.saturated);
 }
 
-TEST_CASE("B-dot skips unusable samples and restarts after a long gap", "[bdot]") {
+TEST_CASE("B-dot skips unusable samples and restarts after a long gap", "[unloading_controller][bdot]") {
   BdotParams p;
   p.max_sample_gap_s = 5.0;
   Bdot law(p);
@@ -73,7 +73,7 @@ TEST_CASE("B-dot skips unusable samples and restarts after a long gap", "[bdot]"
   CHECK_FALSE(law.step({Eigen::Vector3d(30e-6, 0, 0), true}, 10 * kSecond).active);  // 7 s gap
 }
 
-TEST_CASE("the low-pass follows a constant dB/dt and halves a step input after tau", "[bdot]") {
+TEST_CASE("the low-pass follows a constant dB/dt and halves a step input after tau", "[unloading_controller][bdot]") {
   BdotParams p;
   p.filter_time_constant_s = 3.0;
   Bdot law(p);
@@ -90,7 +90,7 @@ TEST_CASE("the low-pass follows a constant dB/dt and halves a step input after t
   CHECK(out.b_dot_B_T_s.x() == Approx(0.75e-6));
 }
 
-TEST_CASE("corrected B-dot sees no error on a body that turns at omega_ref", "[bdot]") {
+TEST_CASE("corrected B-dot sees no error on a body that turns at omega_ref", "[unloading_controller][bdot]") {
   // P = Ḃ − B × ω_ref with Ḃ = B × ω in a fixed field: zero when ω = ω_ref.
   const Eigen::Vector3d w_B(0.01, -0.02, 0.035), b_N(20e-6, -5e-6, 30e-6);
   BdotParams p;
@@ -111,7 +111,7 @@ TEST_CASE("corrected B-dot sees no error on a body that turns at omega_ref", "[b
   CHECK(*seen.rate_error_rad_s == Approx(w_B.cross(b_N.normalized()).norm()).epsilon(1e-3));
 }
 
-TEST_CASE("with the onboard field model, B-dot sees the body's own rate and not the field's turn", "[bdot]") {
+TEST_CASE("with the onboard field model, B-dot sees the body's own rate and not the field's turn", "[unloading_controller][bdot]") {
   // A field that turns (2e-3 rad/s about an axis 30 deg off the orbit normal n = z)
   // and swells, seen from a body spinning at ω_s about its z axis held on n:
   // Ḃ − R̂ḃ_N = B × ω, so with ω_ref = ω_s z nothing is left but the secant's
@@ -143,7 +143,7 @@ TEST_CASE("with the onboard field model, B-dot sees the body's own rate and not 
   CHECK(worst < std::pow(w_s, 3) / 6.0 + 1e-6);
 }
 
-TEST_CASE("B-dot never raises the kinetic energy while it detumbles", "[bdot]") {
+TEST_CASE("B-dot never raises the kinetic energy while it detumbles", "[unloading_controller][bdot]") {
   // Only the coils act (no gravity gradient, drag or residual dipole), so over a
   // step ΔE = ∫ωᵀ(m × B) dt = ∫mᵀ(B × ω) dt, and in body axes B × ω = Ḃ − R_BN ḃ_N.
   // The law makes mᵀḂ ≤ 0; the field's own motion can feed in at most
@@ -177,7 +177,7 @@ TEST_CASE("B-dot never raises the kinetic energy while it detumbles", "[bdot]") 
   }
 }
 
-TEST_CASE("B-dot detumbles 10 deg/s about random axes below 0.2 deg/s within 3 orbits", "[bdot]") {
+TEST_CASE("B-dot detumbles 10 deg/s about random axes below 0.2 deg/s within 3 orbits", "[unloading_controller][bdot]") {
   // 10 of the 50 seeded cases; `flatsat study detumble` runs all 50.
   for (const BdotShape shape : {BdotShape::kBangBang, BdotShape::kProportional}) {
     for (std::uint64_t seed = 1; seed <= 10; ++seed) {
@@ -198,7 +198,7 @@ TEST_CASE("B-dot detumbles 10 deg/s about random axes below 0.2 deg/s within 3 o
   }
 }
 
-TEST_CASE("S4 spin capture: spin axis on the orbit normal, rate within 5 % in 5 orbits", "[bdot]") {
+TEST_CASE("S4 spin capture: spin axis on the orbit normal, rate within 5 % in 5 orbits", "[unloading_controller][bdot]") {
   // 10 of the 50 seeded cases; `flatsat study spin` runs all 50. Judged over
   // the whole fifth orbit, so a capture that is only passing does not count.
   const double target = 2.0 * kDeg;

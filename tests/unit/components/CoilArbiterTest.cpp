@@ -10,7 +10,7 @@
 
 using namespace flatsat::unloading_controller;
 
-TEST_CASE("coil arbiter: a window runs whole, the law resumes after it", "[coils]") {
+TEST_CASE("coil arbiter: a window runs whole, the law resumes after it", "[unloading_controller][coils]") {
   CoilArbiter arbiter(Eigen::Vector3d::Constant(150.0));
   const Eigen::Vector3d law(1.0, 2.0, 3.0);
   CoilRequest r{7, {100.0, 0.0, 0.0}, 10.0, 5.0, 10.0};
@@ -42,7 +42,7 @@ TEST_CASE("coil arbiter: a window runs whole, the law resumes after it", "[coils
 }
 
 TEST_CASE("coil arbiter: overlapping requests wait, two users never drive a coil at once",
-          "[coils]") {
+          "[unloading_controller][coils]") {
   CoilArbiter arbiter(Eigen::Vector3d::Constant(150.0));
   const Eigen::Vector3d law(5.0, 5.0, 5.0);
   CoilRequest first{1, {100.0, 0.0, 0.0}, 3.0, 3.0, 3.0};
@@ -67,7 +67,7 @@ TEST_CASE("coil arbiter: overlapping requests wait, two users never drive a coil
   CHECK(second_started == 9);  // right after the first window's end
 }
 
-TEST_CASE("coil arbiter: a dipole beyond a coil's limit is refused, not clipped", "[coils]") {
+TEST_CASE("coil arbiter: a dipole beyond a coil's limit is refused, not clipped", "[unloading_controller][coils]") {
   CoilArbiter arbiter(Eigen::Vector3d::Constant(150.0));
   const auto out = arbiter.step(CoilRequest{3, {200.0, 0.0, 0.0}, 1.0, 1.0, 1.0},
                                 Eigen::Vector3d::Ones(), 0);
@@ -78,7 +78,7 @@ TEST_CASE("coil arbiter: a dipole beyond a coil's limit is refused, not clipped"
   CHECK_THROWS_AS(CoilArbiter(Eigen::Vector3d(1.0, 0.0, 1.0)), std::invalid_argument);
 }
 
-TEST_CASE("coil arbiter: an unloading pulse in progress is held as the window's pulse", "[coils]") {
+TEST_CASE("coil arbiter: an unloading pulse in progress is held as the window's pulse", "[unloading_controller][coils]") {
   CoilArbiter arbiter(Eigen::Vector3d::Constant(150.0));
   // Seed S0 asks for +100 A m² on x, or the law's own dipole when it gives >= 40 along x.
   const CoilRequest request{4, {100.0, 0.0, 0.0}, 2.0, 3.0, 2.0, 40.0};

@@ -95,7 +95,7 @@ Trip gridOverBranches(const FlapInversion& inversion, int dead = -1) {
 }  // namespace
 
 TEST_CASE("S2 flaps: the seed's closed forms solve its small-angle equations (transcription check)",
-          "[unit][s2]") {
+          "[unloading_controller][unit][s2]") {
   // Eq. IV: S1² + S2² = 1 and S2³ − S1³ = √C2 for C2 in [0, 1] (1c: the same, swapped).
   for (double C2 = 0.0; C2 <= 1.0; C2 += 0.01) {
     const Eigen::Vector2d s = seedSmallAngleSquares(C2, false);
@@ -113,7 +113,7 @@ TEST_CASE("S2 flaps: the seed's closed forms solve its small-angle equations (tr
 }
 
 TEST_CASE("S2 flaps: angles -> c_ax, c_az -> angles gives the same torques to 1e-9 in every branch",
-          "[unit][s2]") {
+          "[unloading_controller][unit][s2]") {
   const FlapInversion inversion(FlapInversionParams{});
   const Trip trip = gridOverBranches(inversion);
   INFO("cases " << trip.cases << ", worst |c - c'| " << trip.worst);
@@ -137,7 +137,7 @@ TEST_CASE("S2 flaps: angles -> c_ax, c_az -> angles gives the same torques to 1e
 }
 
 TEST_CASE("S2 flaps: a single failed plate is replaced per the symmetry table in every branch",
-          "[unit][s2]") {
+          "[unloading_controller][unit][s2]") {
   for (int dead = 0; dead < 4; ++dead) {
     FlapInversionParams p;
     p.failed[dead] = true;
@@ -176,7 +176,7 @@ TEST_CASE("S2 flaps: a single failed plate is replaced per the symmetry table in
   CHECK(FlapInversion::dragShape(yaw.theta_rad) > FlapInversion::dragShape(nominal.solve({0.01, 0.3}).theta_rad));
 }
 
-TEST_CASE("S2 flaps: drag-only angles give drag and no torque, also with a failed plate", "[unit][s2]") {
+TEST_CASE("S2 flaps: drag-only angles give drag and no torque, also with a failed plate", "[unloading_controller][unit][s2]") {
   const double theta = 30.0 * kDeg;
   const double u3 = std::pow(std::sin(theta), 3);
   const FlapSolution nominal = FlapInversion(FlapInversionParams{}).dragOnly(theta);
@@ -197,7 +197,7 @@ TEST_CASE("S2 flaps: drag-only angles give drag and no torque, also with a faile
 }
 
 TEST_CASE("S2 flaps: a demand out of reach is scaled down along its direction to the angle limit",
-          "[unit][s2]") {
+          "[unloading_controller][unit][s2]") {
   FlapInversionParams p;
   p.max_angle_rad = 20.0 * kDeg;
   const FlapInversion inversion(p);

@@ -27,7 +27,7 @@ double wrapPi(double a) { return std::remainder(a, 2.0 * std::numbers::pi); }
 
 }  // namespace
 
-TEST_CASE("S3 synchronous elements equal the classical ones the state was made from", "[s3]") {
+TEST_CASE("S3 synchronous elements equal the classical ones the state was made from", "[station_keeping][s3]") {
   struct Case {
     double da_m, e, i_deg, raan_deg, argp_deg, m_deg;
   };
@@ -64,7 +64,7 @@ TEST_CASE("S3 synchronous elements equal the classical ones the state was made f
   CHECK_THAT(s.drift_rad_s, WithinAbs(0.0, 1e-16));
 }
 
-TEST_CASE("S3 impulse effects: the linear changes of i, e and drift match the exact two-body elements", "[s3]") {
+TEST_CASE("S3 impulse effects: the linear changes of i, e and drift match the exact two-body elements", "[station_keeping][s3]") {
   sim::OrbitElements k;
   k.semi_major_axis_m = kSyncRadius_m + 300.0;
   k.eccentricity = 1e-4;

@@ -40,7 +40,7 @@ sim::OrbitPropagator::State geostationary() {
 
 }  // namespace
 
-TEST_CASE("S3 plant: a year of free drift turns the inclination vector as the Sun and Moon do", "[s3]") {
+TEST_CASE("S3 plant: a year of free drift turns the inclination vector as the Sun and Moon do", "[station_keeping][s3]") {
   auto f = geoForces();
   f.j2 = f.sun_gravity = f.moon_gravity = true;
   sim::OrbitPropagator orbit(f, {2027, 1, 1, 0, 0, 0.0}, geostationary());
@@ -55,7 +55,7 @@ TEST_CASE("S3 plant: a year of free drift turns the inclination vector as the Su
   CHECK(std::abs(direction_deg) < 20.0);  // the node near RA 90°
 }
 
-TEST_CASE("S3 plant: a year of solar pressure drives the eccentricity round the published circle", "[s3]") {
+TEST_CASE("S3 plant: a year of solar pressure drives the eccentricity round the published circle", "[station_keeping][s3]") {
   auto f = geoForces();
   f.solar_pressure = true;
   sim::OrbitPropagator orbit(f, {2027, 1, 1, 0, 0, 0.0}, geostationary());

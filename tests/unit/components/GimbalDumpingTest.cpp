@@ -38,7 +38,7 @@ GimbalDumpingParams northCentre() {
 }  // namespace
 
 TEST_CASE("S3 gimbal dumping: the offsets' thrust torque is -H over the burn's rest, where the gimbals reach it",
-          "[s3]") {
+          "[thruster_sequencer][s3]") {
   const GimbalDumpingParams p = northCentre();
   const GimbalDumping dumping(p);
   const sim::Thrusters thrusters(p.thrusters);

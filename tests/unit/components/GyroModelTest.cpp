@@ -9,6 +9,7 @@
 
 #include "components/gyro/GyroModel.hpp"
 #include "tests/unit/components/SampleStats.hpp"
+#include "tests/support/TestUnits.hpp"
 
 using flatsat::gyro::GyroModel;
 using flatsat::gyro::GyroParams;
@@ -18,8 +19,6 @@ using flatsat::test::SampleStats;
 namespace {
 
 const Eigen::Vector3d kRate_B_rad_s(0.01, -0.02, 0.005);
-constexpr std::int64_t kStep_ns = 100'000'000;  // 10 Hz
-constexpr double kStep_s = 0.1;
 
 }  // namespace
 
@@ -50,13 +49,13 @@ TEST_CASE("Gyro white noise per sample is ARW/sqrt(dt)", "[components][gyro]") {
     SampleStats stats[3];
     gyro.step({kRate_B_rad_s}, 0);
     for (int k = 1; k <= 20000; ++k) {
-      const auto out = gyro.step({kRate_B_rad_s}, k * kStep_ns);
+      const auto out = gyro.step({kRate_B_rad_s}, k * kStep10Hz_ns);
       REQUIRE(out.bias_B_rad_s == p.bias0_B_rad_s);  // no drift without RRW
       for (int i = 0; i < 3; ++i) {
         stats[i].add(out.w_NB_B_rad_s[i]);
       }
     }
-    const double sigma = p.angle_random_walk_rad_per_sqrt_s / std::sqrt(kStep_s);
+    const double sigma = p.angle_random_walk_rad_per_sqrt_s / std::sqrt(kStep10Hz_s);
     for (int i = 0; i < 3; ++i) {
       checkGaussian(stats[i], kRate_B_rad_s[i] + p.bias0_B_rad_s[i], sigma);
     }
@@ -89,14 +88,14 @@ TEST_CASE("Gyro bias is a random walk with RRW*sqrt(dt) steps", "[components][gy
   SampleStats residual;  // ω̃ − ω − ½(β_k + β_{k−1}): the σ_u²Δt/12 part of the white noise
   Eigen::Vector3d bias_prev = gyro.step({kRate_B_rad_s}, 0).bias_B_rad_s;
   for (int k = 1; k <= 20000; ++k) {
-    const auto out = gyro.step({kRate_B_rad_s}, k * kStep_ns);
+    const auto out = gyro.step({kRate_B_rad_s}, k * kStep10Hz_ns);
     increments.add(out.bias_B_rad_s.y() - bias_prev.y());
     residual.add(out.w_NB_B_rad_s.y() - kRate_B_rad_s.y() - 0.5 * (out.bias_B_rad_s.y() + bias_prev.y()));
     bias_prev = out.bias_B_rad_s;
   }
   const double rrw = p.rate_random_walk_rad_per_s_sqrt_s;
-  checkGaussian(increments, 0.0, rrw * std::sqrt(kStep_s));
-  checkGaussian(residual, 0.0, rrw * std::sqrt(kStep_s / 12.0));
+  checkGaussian(increments, 0.0, rrw * std::sqrt(kStep10Hz_s));
+  checkGaussian(residual, 0.0, rrw * std::sqrt(kStep10Hz_s / 12.0));
 }
 
 TEST_CASE("Gyro noise and bias replay from the seed", "[components][gyro]") {
@@ -109,17 +108,17 @@ TEST_CASE("Gyro noise and bias replay from the seed", "[components][gyro]") {
   Eigen::Vector3d rates[10];
   Eigen::Vector3d biases[10];
   for (int k = 0; k < 10; ++k) {
-    const auto out = a.step({kRate_B_rad_s}, k * kStep_ns);
+    const auto out = a.step({kRate_B_rad_s}, k * kStep10Hz_ns);
     rates[k] = out.w_NB_B_rad_s;
     biases[k] = out.bias_B_rad_s;
-    CHECK(b.step({kRate_B_rad_s}, k * kStep_ns).w_NB_B_rad_s == rates[k]);
+    CHECK(b.step({kRate_B_rad_s}, k * kStep10Hz_ns).w_NB_B_rad_s == rates[k]);
   }
   CHECK(biases[9] != p.bias0_B_rad_s);
   WHEN("reset") {
     a.reset();
     THEN("the bias restarts at bias0 and the sequence repeats, time origin included") {
       for (int k = 0; k < 10; ++k) {
-        const auto out = a.step({kRate_B_rad_s}, k * kStep_ns);
+        const auto out = a.step({kRate_B_rad_s}, k * kStep10Hz_ns);
         CHECK(out.w_NB_B_rad_s == rates[k]);
         CHECK(out.bias_B_rad_s == biases[k]);
       }

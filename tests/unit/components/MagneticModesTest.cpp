@@ -31,14 +31,14 @@ MagneticModesParams detumbleThenSpin() {
 
 }  // namespace
 
-TEST_CASE("mode names parse and nothing else does", "[bdot]") {
+TEST_CASE("mode names parse and nothing else does", "[unloading_controller][bdot]") {
   CHECK(magneticModeFromName("unload") == MagneticMode::kUnload);
   CHECK(magneticModeFromName("detumble") == MagneticMode::kDetumble);
   CHECK(magneticModeFromName("spin_capture") == MagneticMode::kSpinCapture);
   CHECK_FALSE(magneticModeFromName("spin"));
 }
 
-TEST_CASE("detumble hands over only after the rate stayed below the threshold for the hold", "[bdot]") {
+TEST_CASE("detumble hands over only after the rate stayed below the threshold for the hold", "[unloading_controller][bdot]") {
   MagneticModes modes(detumbleThenSpin());
   // |P|/|B| = |ω × b̂| = 0.95 ω for this field and ω along z.
   std::int64_t k = 0;
@@ -65,7 +65,7 @@ TEST_CASE("detumble hands over only after the rate stayed below the threshold fo
   CHECK_FALSE(modes.step({Eigen::Vector4d::Zero(), fieldSeen(0.002, 40), true}, 41 * kSecond).active);
 }
 
-TEST_CASE("without after_detumble the law stays in detumble", "[bdot]") {
+TEST_CASE("without after_detumble the law stays in detumble", "[unloading_controller][bdot]") {
   auto p = detumbleThenSpin();
   p.after_detumble.reset();
   MagneticModes modes(p);
@@ -75,7 +75,7 @@ TEST_CASE("without after_detumble the law stays in detumble", "[bdot]") {
   CHECK(modes.mode() == MagneticMode::kDetumble);
 }
 
-TEST_CASE("a mode command switches the law and reports the unloading thresholds", "[bdot]") {
+TEST_CASE("a mode command switches the law and reports the unloading thresholds", "[unloading_controller][bdot]") {
   MagneticModesParams p;
   p.unload.wheels.count = 3;
   p.unload.wheels.inertia_kg_m2 = Eigen::Vector4d(1e-4, 1e-4, 1e-4, 0.0);
@@ -98,7 +98,7 @@ TEST_CASE("a mode command switches the law and reports the unloading thresholds"
   CHECK(out.m_B_Am2.y() < 0.0);  // −m0 sgn(Ḃ_y)
 }
 
-TEST_CASE("mode parameters are validated with their scenario keys", "[bdot]") {
+TEST_CASE("mode parameters are validated with their scenario keys", "[unloading_controller][bdot]") {
   MagneticModesParams p;
   p.after_detumble = MagneticMode::kDetumble;
   p.detumble.gain_Am2_s_per_T = -1.0;

@@ -27,12 +27,12 @@ std::array<std::uint8_t, kFrameSize> cleanFrame(std::mt19937& rng, std::uint32_t
 
 }  // namespace
 
-TEST_CASE("CRC-16/CCITT-FALSE matches its published check value", "[components][bridge]") {
+TEST_CASE("CRC-16/CCITT-FALSE matches its published check value", "[magnetometer_bridge][components][bridge]") {
   const std::uint8_t check[] = {'1', '2', '3', '4', '5', '6', '7', '8', '9'};
   CHECK(crc16CcittFalse(check) == 0x29B1);  // the catalogue's check value for "123456789"
 }
 
-TEST_CASE("a frame round-trips through the parser, byte by byte", "[components][bridge]") {
+TEST_CASE("a frame round-trips through the parser, byte by byte", "[magnetometer_bridge][components][bridge]") {
   const FieldSample sample{7, {-21000, 1500, 43000}};
   FrameParser parser;
   std::optional<FieldSample> out;
@@ -46,7 +46,7 @@ TEST_CASE("a frame round-trips through the parser, byte by byte", "[components][
 }
 
 TEST_CASE("10^4 corrupted frames among good ones: no bad sample, exact counts",
-          "[components][bridge]") {
+          "[magnetometer_bridge][components][bridge]") {
   std::mt19937 rng(2026);
   std::uint32_t sequence = 0;
   std::vector<std::uint8_t> stream;

@@ -34,8 +34,6 @@ using flatsat::onboard::ReferenceModel;
 namespace {
 
 constexpr double kDegPerHour = kDeg / 3600.0;
-constexpr std::int64_t kStep_ns = 100'000'000;
-constexpr double kStep_s = 0.1;
 
 // Datasheet-typical sensors (the default scenario's): a navigation-grade gyro (ARW 0.01°/√h,
 // bias 0.5°/h), a fluxgate magnetometer with 50 nT noise after calibration, a fine Sun sensor
@@ -174,7 +172,7 @@ struct Spacecraft {
 
   bool isOutlier(double t_s) const {
     return std::any_of(outlier_times_s.begin(), outlier_times_s.end(),
-                       [&](double o) { return std::abs(o - t_s) < 0.5 * kStep_s; });
+                       [&](double o) { return std::abs(o - t_s) < 0.5 * kStep10Hz_s; });
   }
 
   /// Samples every step over `seconds`; the first call also takes the sample at t = 0.
@@ -184,11 +182,11 @@ struct Spacecraft {
       started_ = true;
       samples.push_back(sample(rate(0.0)));
     }
-    for (auto k = std::lround(seconds / kStep_s); k > 0; --k) {
+    for (auto k = std::lround(seconds / kStep10Hz_s); k > 0; --k) {
       // Truth moves with the rate held over the step, which is what a mean-rate gyro reports.
       const Eigen::Vector3d w = rate(static_cast<double>(t_ns) * 1e-9);
-      q_true = q_true * rotate(w, kStep_s);
-      t_ns += kStep_ns;
+      q_true = q_true * rotate(w, kStep10Hz_s);
+      t_ns += kStep10Hz_ns;
       samples.push_back(sample(w));
     }
     return samples;
@@ -255,7 +253,7 @@ double threeSigma(const std::vector<Sample>& samples, Keep keep) {
 }
 
 }  // namespace
-TEST_CASE("MEKF gates sit at the published chi-square quantiles", "[mekf]") {
+TEST_CASE("MEKF gates sit at the published chi-square quantiles", "[estimator][mekf]") {
   // Abramowitz & Stegun Table 26.8.
   CHECK(chiSquareQuantile(2, 0.95) == Approx(5.9915).epsilon(1e-4));
   CHECK(chiSquareQuantile(2, 0.99) == Approx(9.2103).epsilon(1e-4));
@@ -266,7 +264,7 @@ TEST_CASE("MEKF gates sit at the published chi-square quantiles", "[mekf]") {
   CHECK(filter.gate3() == Approx(chiSquareQuantile(3, 0.9999)));
 }
 
-TEST_CASE("MEKF parameters are validated field by field", "[mekf]") {
+TEST_CASE("MEKF parameters are validated field by field", "[estimator][mekf]") {
   CHECK(MekfParams{}.validate().empty());
   MekfParams p;
   p.gyro_arw_rad_per_sqrt_s = 0.0;
@@ -282,7 +280,7 @@ TEST_CASE("MEKF parameters are validated field by field", "[mekf]") {
   CHECK_THROWS_AS(Mekf(p), std::invalid_argument);
 }
 
-TEST_CASE("MEKF starts invalid and initialises by TRIAD or from the star tracker", "[mekf]") {
+TEST_CASE("MEKF starts invalid and initialises by TRIAD or from the star tracker", "[estimator][mekf]") {
   Mekf filter(filterParams());
   const Eigen::Quaterniond q(Eigen::AngleAxisd(2.0, Eigen::Vector3d(1.0, -2.0, 0.5).normalized()));
   const Eigen::Vector3d s_N = Eigen::Vector3d(0.3, 0.9, 0.2).normalized();
@@ -324,7 +322,7 @@ TEST_CASE("MEKF starts invalid and initialises by TRIAD or from the star tracker
 }
 
 TEST_CASE("MEKF with gyro, magnetometer and Sun sensor: accurate in sunlight, bias converged",
-          "[mekf]") {
+          "[estimator][mekf]") {
   Spacecraft sc;
   const double orbit_s = sc.orbit.period_s();
   const auto samples = sc.run(2.0 * orbit_s);
@@ -352,7 +350,7 @@ TEST_CASE("MEKF with gyro, magnetometer and Sun sensor: accurate in sunlight, bi
   CHECK(samples.back().out.rejected_total < 4 * samples.size() * 2 * 1e-4 + 5);
 }
 
-TEST_CASE("a restarted MEKF given the old one's state goes on exactly as if never stopped", "[mekf][restart]") {
+TEST_CASE("a restarted MEKF given the old one's state goes on exactly as if never stopped", "[estimator][mekf][restart]") {
   Spacecraft uninterrupted, restarted;
   uninterrupted.magnetometer_lost_from_s = restarted.magnetometer_lost_from_s = 2500.0;
   uninterrupted.magnetometer_lost_to_s = restarted.magnetometer_lost_to_s = 2700.0;
@@ -388,7 +386,7 @@ TEST_CASE("a restarted MEKF given the old one's state goes on exactly as if neve
   CHECK(grown > 0.9 * 3.0 * kArw * kArw * gap_s);
 }
 
-TEST_CASE("MEKF covariance is consistent: Monte Carlo NEES inside its 95 % bounds", "[mekf]") {
+TEST_CASE("MEKF covariance is consistent: Monte Carlo NEES inside its 95 % bounds", "[estimator][mekf]") {
   // Runs with their own sensor noise, gyro turn-on bias and magnetometer residual bias; per
   // time step the NEES of the full 9-state error averaged over the runs, bounds from the
   // closed form.
@@ -419,7 +417,7 @@ TEST_CASE("MEKF covariance is consistent: Monte Carlo NEES inside its 95 % bound
   CHECK(fraction >= 0.95);
 }
 
-TEST_CASE("MEKF with a star tracker holds the attitude within 0.02° (3σ)", "[mekf]") {
+TEST_CASE("MEKF with a star tracker holds the attitude within 0.02° (3σ)", "[estimator][mekf]") {
   Spacecraft sc;
   sc.star_tracker_sigma_rad = 10.0 / 3600.0 * kDeg;  // 10 arcsec 1σ per axis, a typical tracker
   MekfParams p = filterParams();
@@ -432,7 +430,7 @@ TEST_CASE("MEKF with a star tracker holds the attitude within 0.02° (3σ)", "[m
   CHECK(samples.back().out.star == MeasurementUse::kUsed);
 }
 
-TEST_CASE("MEKF rides through eclipse: covariance grows without the Sun and recovers", "[mekf]") {
+TEST_CASE("MEKF rides through eclipse: covariance grows without the Sun and recovers", "[estimator][mekf]") {
   Spacecraft sc;
   const auto samples = sc.run(sc.orbit.period_s());
   // The first eclipse of the orbit: last sunlit sample before it, last one in it.
@@ -455,12 +453,12 @@ TEST_CASE("MEKF rides through eclipse: covariance grows without the Sun and reco
   CHECK((exit + 3000)->error_rad < 0.5 * kDeg / 3.0);
 }
 
-TEST_CASE("MEKF rides through a magnetometer fault and recovers", "[mekf]") {
+TEST_CASE("MEKF rides through a magnetometer fault and recovers", "[estimator][mekf]") {
   Spacecraft sc;
   sc.magnetometer_lost_from_s = 600.0;
   sc.magnetometer_lost_to_s = 1200.0;
   const auto samples = sc.run(1500.0);
-  const auto at = [&](double t) { return samples[static_cast<std::size_t>(std::lround(t / kStep_s))]; };
+  const auto at = [&](double t) { return samples[static_cast<std::size_t>(std::lround(t / kStep10Hz_s))]; };
   REQUIRE(at(1200.0).sunlit);  // the fault is in sunlight: only the roll about the Sun is lost
   CHECK(at(600.0).out.field == MeasurementUse::kAbsent);
   // The roll about the Sun line is only seen by the field: its σ grows with the gyro's ARW ...
@@ -472,14 +470,14 @@ TEST_CASE("MEKF rides through a magnetometer fault and recovers", "[mekf]") {
   CHECK(at(1500.0).sigma_max_rad < 1.5 * at(599.9).sigma_max_rad);
 }
 
-TEST_CASE("MEKF gate rejects outliers and counts them", "[mekf]") {
+TEST_CASE("MEKF gate rejects outliers and counts them", "[estimator][mekf]") {
   Spacecraft reference;
   const auto clean = reference.run(1500.0);
   Spacecraft sc;
   sc.outlier_times_s = {700.0, 900.0, 1100.0, 1300.0};
   const auto samples = sc.run(1500.0);
   for (const double t : sc.outlier_times_s) {
-    const auto& s = samples[static_cast<std::size_t>(std::lround(t / kStep_s))];
+    const auto& s = samples[static_cast<std::size_t>(std::lround(t / kStep10Hz_s))];
     CHECK(s.out.sun == MeasurementUse::kRejected);
     CHECK(s.out.field == MeasurementUse::kRejected);
   }
@@ -490,7 +488,7 @@ TEST_CASE("MEKF gate rejects outliers and counts them", "[mekf]") {
   CHECK(error_3sigma < 1.01 * clean_3sigma);
 }
 
-TEST_CASE("MEKF calls its estimate invalid when the covariance outgrows the limit", "[mekf]") {
+TEST_CASE("MEKF calls its estimate invalid when the covariance outgrows the limit", "[estimator][mekf]") {
   MekfParams p = filterParams();
   p.max_attitude_sigma_rad = 0.1 * kDeg;
   Spacecraft sc(10, p);
@@ -503,7 +501,7 @@ TEST_CASE("MEKF calls its estimate invalid when the covariance outgrows the limi
   CHECK(samples.back().out.initialized);
 }
 
-TEST_CASE("MEKF re-acquires by TRIAD when one sensor is gated out for too long", "[mekf]") {
+TEST_CASE("MEKF re-acquires by TRIAD when one sensor is gated out for too long", "[estimator][mekf]") {
   Spacecraft sc;
   sc.run(300.0);
   // The body turns 5° about y between two samples without the gyro seeing it (a stuck-gyro

@@ -35,7 +35,7 @@ ReferenceModelParams params(double field_node_s) {
 TEST_CASE(
     "The onboard field and Sun between 1 s nodes are the models to within the extrapolation's remainder over "
     "an orbit",
-    "[estimator][reference]") {
+    "[common][estimator][reference]") {
   ReferenceModel nodes(params(1.0));
   ReferenceModel exact(params(0.0));
   ReferenceModel exact_at_nodes(params(0.0));
@@ -77,7 +77,7 @@ TEST_CASE(
   CHECK(sun_error_rad < 7.0 * 8e-12);
 }
 
-TEST_CASE("The onboard field is evaluated exactly until it has three consecutive nodes", "[estimator][reference]") {
+TEST_CASE("The onboard field is evaluated exactly until it has three consecutive nodes", "[common][estimator][reference]") {
   ReferenceModel nodes(params(1.0));
   ReferenceModel exact(params(0.0));
   for (const double t_s : {0.0, 0.5, 1.2, 2.7, 9.3, 10.1, 11.4}) {  // a jump from 2.7 to 9.3 s
@@ -92,7 +92,7 @@ TEST_CASE("The onboard field is evaluated exactly until it has three consecutive
   }
 }
 
-TEST_CASE("A node spacing outside 0..10 s is refused", "[estimator][reference]") {
+TEST_CASE("A node spacing outside 0..10 s is refused", "[common][estimator][reference]") {
   CHECK_THROWS_WITH(ReferenceModel(params(11.0)), Catch::Contains("field_node_s"));
   CHECK_THROWS_WITH(ReferenceModel(params(-1.0)), Catch::Contains("field_node_s"));
 }

@@ -26,7 +26,7 @@ Vec measure(SensorFaults<3>& faults, Vec y, double t_s, bool* valid = nullptr) {
 }
 }  // namespace
 
-TEST_CASE("bias acts on its channel during its window only", "[components][faults]") {
+TEST_CASE("bias acts on its channel during its window only", "[common][components][faults]") {
   SensorFaults<3> faults(1);
   faults.add(fault(SensorFaultKind::kBias, 1, 2e-6, 10.0, 5.0));
   const Vec y(1e-5, 2e-5, 3e-5);
@@ -37,7 +37,7 @@ TEST_CASE("bias acts on its channel during its window only", "[components][fault
   CHECK(measure(faults, y, 15.0) == y);  // [start, start + duration)
 }
 
-TEST_CASE("stuck holds the value of the first faulted sample, then releases", "[components][faults]") {
+TEST_CASE("stuck holds the value of the first faulted sample, then releases", "[common][components][faults]") {
   SensorFaults<3> faults(1);
   faults.add(fault(SensorFaultKind::kStuck, -1, 0.0, 1.0, 2.0));
   CHECK(measure(faults, Vec(1, 2, 3), 0.5) == Vec(1, 2, 3));
@@ -46,7 +46,7 @@ TEST_CASE("stuck holds the value of the first faulted sample, then releases", "[
   CHECK(measure(faults, Vec(7, 8, 9), 3.0) == Vec(7, 8, 9));
 }
 
-TEST_CASE("a stuck channel hides a bias on it, other channels keep theirs", "[components][faults]") {
+TEST_CASE("a stuck channel hides a bias on it, other channels keep theirs", "[common][components][faults]") {
   SensorFaults<3> faults(1);
   faults.add(fault(SensorFaultKind::kBias, -1, 1.0, 0.0, 0.0));
   faults.add(fault(SensorFaultKind::kStuck, 0, 0.0, 0.0, 0.0));
@@ -54,7 +54,7 @@ TEST_CASE("a stuck channel hides a bias on it, other channels keep theirs", "[co
   CHECK(measure(faults, Vec(50, 60, 70), 1.0) == Vec(10, 61, 71));
 }
 
-TEST_CASE("spike adds its magnitude to exactly one sample", "[components][faults]") {
+TEST_CASE("spike adds its magnitude to exactly one sample", "[common][components][faults]") {
   SensorFaults<3> faults(1);
   faults.add(fault(SensorFaultKind::kSpike, 2, 100.0, 1.0, 0.0));
   CHECK(measure(faults, Vec::Zero(), 0.9) == Vec::Zero());
@@ -62,7 +62,7 @@ TEST_CASE("spike adds its magnitude to exactly one sample", "[components][faults
   CHECK(measure(faults, Vec::Zero(), 1.1) == Vec::Zero());
 }
 
-TEST_CASE("dropout invalidates the sample, saturation clips", "[components][faults]") {
+TEST_CASE("dropout invalidates the sample, saturation clips", "[common][components][faults]") {
   SensorFaults<3> faults(1);
   faults.add(fault(SensorFaultKind::kDropout, -1, 0.0, 1.0, 1.0));
   faults.add(fault(SensorFaultKind::kSaturation, -1, 5.0, 0.0, 0.0));
@@ -75,7 +75,7 @@ TEST_CASE("dropout invalidates the sample, saturation clips", "[components][faul
   CHECK(valid);
 }
 
-TEST_CASE("noise fault adds white noise of the set standard deviation", "[components][faults]") {
+TEST_CASE("noise fault adds white noise of the set standard deviation", "[common][components][faults]") {
   SensorFaults<3> faults(42);
   faults.add(fault(SensorFaultKind::kNoise, 0, 0.5, 0.0, 0.0));
   const int n = 100000;
@@ -91,7 +91,7 @@ TEST_CASE("noise fault adds white noise of the set standard deviation", "[compon
   CHECK(sigma == Approx(0.5).epsilon(0.03));  // within 3 % over 1e5 samples
 }
 
-TEST_CASE("fault parameters are validated", "[components][faults]") {
+TEST_CASE("fault parameters are validated", "[common][components][faults]") {
   CHECK(fault(SensorFaultKind::kBias, 0, 1.0, 0.0, 0.0).validate(3).empty());
   CHECK(fault(SensorFaultKind::kBias, 3, 1.0, 0.0, 0.0).validate(3).size() == 1);
   CHECK(fault(SensorFaultKind::kNoise, 0, -1.0, 0.0, 0.0).validate(3).size() == 1);

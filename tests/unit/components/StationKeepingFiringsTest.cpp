@@ -37,7 +37,7 @@ Flown fly(StationKeepingFirings& firings, double ra0_deg, int steps) {
 
 }  // namespace
 
-TEST_CASE("S3 firings: a burn is flown whole, centred on its right ascension", "[s3]") {
+TEST_CASE("S3 firings: a burn is flown whole, centred on its right ascension", "[thruster_sequencer][s3]") {
   StationKeepingFirings firings({60.0, kRate, 6});
   firings.plan(100, {{1, 90.0 * kDeg, 3000.0}});
   const Flown f = fly(firings, 40.0, 1440);
@@ -49,7 +49,7 @@ TEST_CASE("S3 firings: a burn is flown whole, centred on its right ascension", "
   CHECK(fly(firings, 40.0, 1440).on_s == 0.0);
 }
 
-TEST_CASE("S3 firings: a new plan replaces the firings not begun, a burn under way runs to its end", "[s3]") {
+TEST_CASE("S3 firings: a new plan replaces the firings not begun, a burn under way runs to its end", "[thruster_sequencer][s3]") {
   StationKeepingFirings firings({60.0, kRate, 6});
   firings.plan(1, {{1, 90.0 * kDeg, 1200.0}, {2, 200.0 * kDeg, 600.0}});
   // Into thruster 1's burn: 90° − 600 s of arc is 87.5°; 10 minutes of it flown.
@@ -70,7 +70,7 @@ TEST_CASE("S3 firings: a new plan replaces the firings not begun, a burn under w
   CHECK(thruster3 == Approx(60.0));
 }
 
-TEST_CASE("S3 firings: a plan that comes inside an arc starts at once up to its centre, else waits", "[s3]") {
+TEST_CASE("S3 firings: a plan that comes inside an arc starts at once up to its centre, else waits", "[thruster_sequencer][s3]") {
   StationKeepingFirings before_centre({60.0, kRate, 6});
   before_centre.plan(1, {{1, 90.0 * kDeg, 3600.0}});  // arc 82.5°..97.5°
   CHECK(before_centre.step(85.0 * kDeg).on_time_s(1) == 60.0);

@@ -73,7 +73,7 @@ SynchronousElements aDayOfDrift(double station_rad) {
 
 }  // namespace
 
-TEST_CASE("S3 planner: parameters are checked, naming the field", "[s3]") {
+TEST_CASE("S3 planner: parameters are checked, naming the field", "[station_keeping][s3]") {
   StationKeepingParams p;
   p.thrust_N = 0.0;
   p.thrusters.cant_rad = 2.0;
@@ -86,7 +86,7 @@ TEST_CASE("S3 planner: parameters are checked, naming the field", "[s3]") {
   }
 }
 
-TEST_CASE("S3 planner: nominal firings bring i and e to zero and the drift to the return drift, as flown", "[s3]") {
+TEST_CASE("S3 planner: nominal firings bring i and e to zero and the drift to the return drift, as flown", "[station_keeping][s3]") {
   StationKeepingParams p;
   p.station_longitude_rad = 19.2 * kDeg;
   // A slow return, so that a day's small inclination firings (whose
@@ -128,7 +128,7 @@ TEST_CASE("S3 planner: nominal firings bring i and e to zero and the drift to th
 }
 
 TEST_CASE("S3 planner: with a pair failed, only the table's thrusters fire and the errors shrink",
-          "[s3]") {
+          "[station_keeping][s3]") {
   StationKeepingParams p;
   const StationKeepingPlanner planner(p);
   for (const auto failure : {PairFailure::k22_28, PairFailure::k20_30, PairFailure::k24_26}) {
@@ -161,7 +161,7 @@ TEST_CASE("S3 planner: with a pair failed, only the table's thrusters fire and t
 
 TEST_CASE("S3 planner: each MD firing flies as two halves whose thrust lines part, so its gimbals reach every "
           "direction",
-          "[s3]") {
+          "[station_keeping][s3]") {
   // A gimbal turns a thrust line through the centre of mass only within the
   // plane normal to it: firings whose lines are all parallel leave the
   // momentum along that line undumped. NC(22) at 90° and SC(28) at 270° share

@@ -40,7 +40,7 @@ std::multiset<Row> rows(const std::vector<Firing>& firings) {
 }  // namespace
 
 TEST_CASE("S3 thrusters: thrust lines through the CM give the seed's ΔV components, pairs share a power unit",
-          "[s3]") {
+          "[station_keeping][s3]") {
   const GeoThrusterParams p{36.0 * kDeg, 10.0 * kDeg};
   REQUIRE(validate(p).empty());
   CHECK(validate(GeoThrusterParams{0.0, 0.1}).front().rfind("cant_rad:", 0) == 0);
@@ -81,7 +81,7 @@ TEST_CASE("S3 thrusters: thrust lines through the CM give the seed's ΔV compone
 }
 
 TEST_CASE("S3 firing table: each state and season gives the seed's Table I rows, with working thrusters only",
-          "[s3]") {
+          "[station_keeping][s3]") {
   const auto ide = Job::kInclinationDriftEccentricity, md = Job::kMomentumDump, imd = Job::kInclinationAndDump,
              de = Job::kDriftAndEccentricity;
   Season winter;  // winter/spring, no eclipse
@@ -130,7 +130,7 @@ TEST_CASE("S3 firing table: each state and season gives the seed's Table I rows,
 }
 
 TEST_CASE("S3 over a year: two eclipse seasons of about 45 days at the equinoxes, and no firing in the shadow",
-          "[s3]") {
+          "[station_keeping][s3]") {
   int spring_days = 0, autumn_days = 0, winter_spring_days = 0;
   for (int day = 0; day < 365; ++day) {
     for (const double hour : {0.0, 12.0}) {

@@ -130,7 +130,7 @@ YearResult flyYear(PairFailure failure, double station_rad) {
 
 }  // namespace
 
-TEST_CASE("S3 over a year at 75°E: every state holds the station box and fires outside the shadow", "[s3]") {
+TEST_CASE("S3 over a year at 75°E: every state holds the station box and fires outside the shadow", "[station_keeping][s3]") {
   const double v = 3074.66, cant = StationKeepingParams{}.thrusters.cant_rad;
   // The inclination alone costs v Δi / cos θ a year (0.94°/yr in 2027: 62 m/s
   // at θ = 36°; the typical 50 m/s of electric GEO station keeping is for
@@ -154,7 +154,7 @@ TEST_CASE("S3 over a year at 75°E: every state holds the station box and fires 
   }
 }
 
-TEST_CASE("S3 over a year at 19.2°E, J22 pulling east: the nominal state holds the station box", "[s3]") {
+TEST_CASE("S3 over a year at 19.2°E, J22 pulling east: the nominal state holds the station box", "[station_keeping][s3]") {
   const YearResult r = flyYear(PairFailure::kNone, 19.2 * kDeg);
   WARN("nominal at 19.2E: longitude " << r.longitude_dev_deg_max << " deg, i " << r.inclination_deg_max << " deg, e "
                                       << r.eccentricity_max << ", dv " << r.dv_m_s << " m/s/yr");

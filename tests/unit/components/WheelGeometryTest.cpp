@@ -15,7 +15,7 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 }  // namespace
 
-TEST_CASE("Wheel geometry sums the momentum of the live wheels only", "[components][wheel_geometry]") {
+TEST_CASE("Wheel geometry sums the momentum of the live wheels only", "[common][components][wheel_geometry]") {
   GIVEN("two live wheels on x and a skewed axis, garbage in the unused slots") {
     const double s = 1.0 / std::sqrt(2.0);
     WheelGeometry g;
@@ -39,7 +39,7 @@ TEST_CASE("Wheel geometry sums the momentum of the live wheels only", "[componen
   }
 }
 
-TEST_CASE("Wheel geometry reports every violation under its prefix", "[components][wheel_geometry]") {
+TEST_CASE("Wheel geometry reports every violation under its prefix", "[common][components][wheel_geometry]") {
   WheelGeometry g;
   CHECK(g.validate("wheels").empty());
   g.axes_B.col(0) *= 2.0;
@@ -56,7 +56,7 @@ TEST_CASE("Wheel geometry reports every violation under its prefix", "[component
   }
 }
 
-TEST_CASE("Validation helpers reject NaN and name the field", "[components][validation]") {
+TEST_CASE("Validation helpers reject NaN and name the field", "[common][components][validation]") {
   std::vector<std::string> errors;
   flatsat::requirePositive(errors, "a", 1.0);
   flatsat::requireNonNegative(errors, "b", 0.0);

@@ -26,7 +26,7 @@ bool withinBinomial(int count, double n, double p) {
 
 }  // namespace
 
-TEST_CASE("Every ziggurat layer has Marsaglia and Tsang's area, the base one with the tail", "[noise]") {
+TEST_CASE("Every ziggurat layer has Marsaglia and Tsang's area, the base one with the tail", "[common][noise]") {
   const auto& t = Ziggurat::tables();
   const double v = Ziggurat::kLayerArea;
   const double r = Ziggurat::kTailStart;
@@ -43,7 +43,7 @@ TEST_CASE("Every ziggurat layer has Marsaglia and Tsang's area, the base one wit
   CHECK(Ziggurat::kLayers * v < 1.01 * std::sqrt(M_PI / 2.0));
 }
 
-TEST_CASE("Ziggurat draws follow N(0, 1): moments, distribution function and tails", "[noise]") {
+TEST_CASE("Ziggurat draws follow N(0, 1): moments, distribution function and tails", "[common][noise]") {
   std::mt19937_64 engine(20261127);
   constexpr int kDraws = 1'000'000;
   // Bins of the distribution function from −4 to 4 by 0.5, and the counts beyond the
@@ -82,7 +82,7 @@ TEST_CASE("Ziggurat draws follow N(0, 1): moments, distribution function and tai
   CHECK(withinBinomial(positive, n, 0.5));                                  // the sign bit
 }
 
-TEST_CASE("Gaussian noise replays its draws after reset and scales them by sigma", "[noise]") {
+TEST_CASE("Gaussian noise replays its draws after reset and scales them by sigma", "[common][noise]") {
   GaussianNoise noise(7);
   const Eigen::Vector3d first = noise.vector<3>(2.0);
   noise.sample(1.0);

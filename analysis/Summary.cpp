@@ -1,0 +1,249 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "analysis/Summary.hpp"
+#include "analysis/SummaryAngleOnly.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <sstream>
+
+#include "bus/Convert.hpp"
+#include "bus/Recording.hpp"
+#include "bus/RecordingMeta.hpp"
+#include "bus/Serialization.hpp"
+#include "bus/Topics.hpp"
+#include "components/attitude_controller/AttitudeControllerNode.hpp"
+#include "sim/Frames.hpp"
+#include "analysis/Conventions.hpp"
+#include "analysis/SummaryEstimator.hpp"
+#include "analysis/SummaryMagnetic.hpp"
+#include "analysis/SummaryFieldFromMomentum.hpp"
+#include "analysis/SummaryAeroUnloading.hpp"
+#include "analysis/SummaryStationKeeping.hpp"
+#include "analysis/SummaryTrust.hpp"
+#include "vehicle/VehicleReader.hpp"
+
+namespace flatsat::analysis {
+
+namespace {
+
+struct MomentumStats {
+  double start = 0.0, max = 0.0, end = 0.0;
+};
+
+}  // namespace
+
+nlohmann::ordered_json summarize(const bus::Scenario& scenario, const std::string& recording_path,
+                                 const RunOutcome& launch) {
+  bus::ConfigProblems ignored;  // the scenario was checked before the run
+  const vehicle::Vehicle craft = vehicle::readVehicle(scenario, ignored);
+  const auto& plant = craft.truth;
+  Eigen::Vector3d axis_B = Eigen::Vector3d::UnitX();
+  bool s2_orbital = false;  // pointing judged against seed S2's orbital frame, not the Sun
+  if (scenario.hasComponent("attitude_controller")) {
+    const auto controller =
+        attitude_controller::readParams(scenario, craft, {scenario.file, "attitude_controller", ""}, ignored);
+    axis_B = controller.law.pointing_axis_B.normalized();
+    s2_orbital = controller.s2_orbital.has_value();
+  }
+  double capacity = plant.body.wheel_max_momentum_Nms.head(plant.body.wheel_count).minCoeff();
+
+  const bus::Recording recording(recording_path, bus::Recording::Access::kRead);
+  std::uint64_t steps = 0;
+  double sim_seconds = 0.0, pointing_max = 0.0, pointing_sum = 0.0;
+  std::uint64_t pointing_count = 0;
+  MomentumStats h;
+  std::uint64_t late_commands = 0;
+  // A wheel saturates when its momentum reaches the limit the plant holds it
+  // at (sim/RigidBodyWheels.cpp); each arrival there is one event.
+  std::uint64_t saturation_events = 0;
+  std::array<bool, sim::kMaxWheels> saturated{};
+  using TruthDef = std::remove_cvref_t<decltype(bus::topics::kTruth)>;
+  recording.forEach(std::string(bus::topics::kTruth.name),
+                    [&](std::uint64_t, const std::string&, const std::vector<std::uint8_t>& bytes) {
+                      const auto truth = bus::deserialize<TruthDef>(bytes);
+                      const double t = static_cast<double>(truth.header().sim_time_ns()) * 1e-9;
+                      const double momentum = bus::vec3(truth.h_wheels_body_Nms()).norm();
+                      if (steps == 0) h.start = momentum;
+                      h.max = std::max(h.max, momentum);
+                      h.end = momentum;
+                      sim_seconds = t;
+                      ++steps;
+                      // The slower dipole command is due every `divider` steps;
+                      // only a wheel command older than its step was late.
+                      if (truth.wheel_cmd_age_steps() > 0) ++late_commands;
+                      for (int i = 0; i < plant.body.wheel_count; ++i) {
+                        const double wheel_h = plant.body.wheel_inertia_kg_m2(i) * truth.wheel_speed_rad_s()[i];
+                        const bool at_limit = std::abs(wheel_h) >= plant.body.wheel_max_momentum_Nms(i) * (1 - 1e-9);
+                        if (at_limit && !saturated[i]) ++saturation_events;
+                        saturated[i] = at_limit;
+                      }
+                      if (t < scenario.acquisition_s) return;
+                      const Eigen::Quaterniond q_NB = bus::quat(truth.q_inertial_body());
+                      const Eigen::Vector3d axis_N = q_NB * axis_B;
+                      const double error =
+                          s2_orbital
+                              ? Eigen::Quaterniond(sim::R_N_S2Orbital(bus::vec3(truth.r_inertial_m()),
+                                                                      bus::vec3(truth.v_inertial_m_s())))
+                                    .angularDistance(q_NB)
+                              : std::atan2(axis_N.cross(bus::vec3(truth.sun_inertial_unit())).norm(),
+                                           axis_N.dot(bus::vec3(truth.sun_inertial_unit())));
+                      pointing_max = std::max(pointing_max, error);
+                      pointing_sum += error;
+                      ++pointing_count;
+                    });
+
+  // A decimated recording (recorder record_every_steps) holds every Nth truth
+  // sample only: the run's extent is then the grants the launcher counted.
+  if (!recording.meta(bus::meta::kRecordEverySteps).empty() && launch.steps > 0) {
+    steps = launch.steps;
+    sim_seconds = static_cast<double>(launch.steps - 1) * scenario.step_s;
+  }
+
+  nlohmann::ordered_json s;
+  s["scenario"] = scenario.name;
+  addCompletion(s, recording);
+  s["sim_seconds"] = sim_seconds;
+  s["wall_seconds"] = launch.step_seconds;
+  s["launch_seconds"] = launch.launch_seconds;
+  s["startup_seconds"] = launch.startup_seconds;
+  s["speed_factor"] = launch.step_seconds > 0 ? sim_seconds / launch.step_seconds : 0.0;
+  s["steps"] = steps;
+  s["steps_per_second"] = launch.step_seconds > 0 ? static_cast<double>(steps) / launch.step_seconds : 0.0;
+  s["processes"] = launch.processes;
+  s["acquisition_seconds"] = scenario.acquisition_s;
+  s["pointing_error_deg_max"] = pointing_max * kRadToDeg;
+  s["pointing_error_deg_mean"] = pointing_count ? pointing_sum / pointing_count * kRadToDeg : 0.0;
+  s["wheel_capacity_Nms"] = capacity;
+  s["wheel_momentum_Nms_start"] = h.start;
+  s["wheel_momentum_Nms_max"] = h.max;
+  s["wheel_momentum_Nms_end"] = h.end;
+  s["wheel_saturation_events"] = saturation_events;
+  s["wheel_momentum_fraction_max"] = capacity > 0 ? h.max / capacity : 0.0;
+  s["mode"] = scenario.pacing == bus::Pacing::kPaced ? "paced" : "lockstep";
+  s["wheel_commands_late"] = late_commands;
+  if (scenario.pacing == bus::Pacing::kPaced) {
+    // How evenly the ticks came: each step grant's arrival at the launcher
+    // against the period grid (rig/Progress.hpp TickJitter).
+    s["tick_jitter_us_p50"] = launch.tick_jitter.p50_us;
+    s["tick_jitter_us_p99"] = launch.tick_jitter.p99_us;
+    s["tick_jitter_us_max"] = launch.tick_jitter.max_us;
+    s["ticks_missed"] = launch.tick_jitter.missed;
+  }
+  std::map<std::string, std::array<std::uint64_t, 3>> lateness;  // stale, overruns, deadlines missed
+  nlohmann::ordered_json dropped = nlohmann::ordered_json::object();  // last count by component
+  std::map<std::string, std::uint64_t> refused;                     // last count by component
+  std::array<double, 3> tick_late{};  // [µs] the paced time master's last p50, p99, max
+  using HealthDef = std::remove_cvref_t<decltype(bus::topics::kHealth)>;
+  recording.forEach(std::string(bus::topics::kHealth.name),
+                    [&](std::uint64_t, const std::string& source, const std::vector<std::uint8_t>& bytes) {
+                      const auto health = bus::deserialize<HealthDef>(bytes);
+                      lateness[source] = {health.stale_inputs(), health.overruns(), health.deadlines_missed()};
+                      dropped[source] = health.samples_dropped();
+                      refused[source] = health.commands_refused();
+                      if (health.tick_late_us_max() > 0) {
+                        tick_late = {health.tick_late_us_p50(), health.tick_late_us_p99(), health.tick_late_us_max()};
+                      }
+                    });
+  if (scenario.pacing == bus::Pacing::kPaced) {
+    // How late the time master granted the steps, as it measured them
+    // (bus/TickLateness.hpp): the tick itself, not its delivery.
+    s["tick_lateness_us_p50"] = tick_late[0];
+    s["tick_lateness_us_p99"] = tick_late[1];
+    s["tick_lateness_us_max"] = tick_late[2];
+  }
+  std::uint64_t stale = 0, overruns = 0, deadlines_missed = 0;
+  for (const auto& [component, counts] : lateness) {
+    stale += counts[0];
+    overruns += counts[1];
+    deadlines_missed += counts[2];
+  }
+  // Exclusive ownership delivers one producer's samples at a time, so a
+  // change of source on a topic is a hand-over (bridge <-> emulator).
+  nlohmann::ordered_json switches = nlohmann::ordered_json::array();
+  nlohmann::ordered_json producers = nlohmann::ordered_json::object();
+  bus::forEachTopic([&](const auto& def) {
+    if (def.qos != bus::QosKind::kStepped) return;
+    std::string previous;
+    nlohmann::ordered_json sources = nlohmann::ordered_json::array();
+    std::uint64_t previous_step = 0;
+    recording.forEach(std::string(def.name), [&](std::uint64_t step, const std::string& source,
+                                                 const std::vector<std::uint8_t>&) {
+      if (!previous.empty() && source != previous) {
+        // gap_s: from the old owner's last sample to the new owner's first, the
+        // time readers had nothing new on the topic (none when a bridge's first
+        // sample carries an older step than the emulator's last).
+        const double gap_steps =
+            std::max(0.0, static_cast<double>(step) - static_cast<double>(previous_step));
+        switches.push_back({{"time_s", static_cast<double>(step) * scenario.step_s},
+                            {"topic", def.name},
+                            {"from", previous},
+                            {"to", source},
+                            {"gap_s", gap_steps * scenario.step_s}});
+      }
+      if (source != previous && std::find(sources.begin(), sources.end(), source) == sources.end()) {
+        sources.push_back(source);
+      }
+      previous = source;
+      previous_step = step;
+    }, bus::Recording::Order::kArrival);
+    if (!sources.empty()) producers[std::string(def.name)] = sources;
+  });
+  s["ownership_switches"] = switches;
+  // Who produced each recorded topic (emulator, bridge or external), and each
+  // component's role in the scenario.
+  s["topic_producers"] = producers;
+  nlohmann::ordered_json roles = nlohmann::ordered_json::object();
+  for (const auto& c : scenario.components) roles[c.name] = c.role;
+  s["roles"] = roles;
+  // [s] from the launch to each external component's first health sample.
+  s["external_joined_s"] = launch.external_joined_s;
+  if (!launch.restarts.empty()) s["restarts"] = launch.restarts;
+  s["stale_inputs"] = stale;
+  s["overruns"] = overruns;
+  s["deadlines_missed"] = deadlines_missed;
+  // Received samples that did not decode, as each component's last recorded
+  // health counted them (a rogue or broken writer on the bus).
+  std::uint64_t dropped_total = 0;
+  for (const auto& [component, count] : dropped.items()) dropped_total += count.get<std::uint64_t>();
+  s["samples_dropped"] = dropped_total;
+  s["samples_dropped_by_component"] = dropped;
+  std::uint64_t refused_total = 0;  // mode, fault and parameter commands refused with a reason
+  for (const auto& [component, count] : refused) refused_total += count;
+  s["commands_refused"] = refused_total;
+  addTrustMetrics(s, recording);
+  addFieldFromMomentumMetrics(s, scenario, recording);
+  summarizeMagnetic(scenario, recording, s);
+  summarizeAeroUnloading(scenario, recording, s);
+  summarizeStationKeeping(scenario, recording, s);
+  summarizeEstimator(scenario, recording, s);
+  s["recording"] = recording_path;
+  s["recording_sha256"] = recording.digest({std::string(bus::topics::kHealth.name)}, wallClockVerdict);
+  summarizeThrusterSequencer(scenario, recording, s);
+  return s;
+}
+
+std::string summaryTable(const nlohmann::ordered_json& summary) {
+  std::ostringstream out;
+  std::size_t width = 0;
+  for (const auto& [key, value] : summary.items()) width = std::max(width, key.size());
+  for (const auto& [key, value] : summary.items()) {
+    out << "  " << key << std::string(width - key.size() + 2, ' ');
+    if (value.is_number_float()) {
+      char buffer[32];
+      std::snprintf(buffer, sizeof buffer, "%.6g", value.get<double>());
+      out << buffer;
+    } else if (value.is_string()) {
+      out << value.get<std::string>();
+    } else if (value.is_array() && !value.empty() && value.front().is_object()) {
+      out << value.size() << " summaries (spacecraft-<i>/summary.json)";
+    } else {
+      out << value.dump();
+    }
+    out << '\n';
+  }
+  return out.str();
+}
+
+}  // namespace flatsat::analysis

@@ -1,0 +1,23 @@
+// SPDX-License-Identifier: Apache-2.0
+#pragma once
+#include <nlohmann/json.hpp>
+
+#include "bus/Recording.hpp"
+#include "bus/Scenario.hpp"
+
+namespace flatsat::analysis {
+
+/// Seed S2 keys of summary.json, when the unloading controller splits its
+/// torque with the flaps (`aero:`), from flatsat/flap_cmd and the truth at the same step:
+///  - aero_torque_ratio: Σ|flap torque (plant)| / Σ|C·B̂|, C the torque the law asked for and
+///    B the plant's field: the flaps' torque against the component of C along B. No flap
+///    pair (roll, yaw) that completes C can go below aero_torque_ratio_least,
+///    Σ|C·B|/√(Bx² + Bz²) / Σ|C·B̂|, 1 when B lies in the roll–yaw plane.
+///  - drag_ratio: the flaps' drag over the run, K Σ|sin θi|³ summed over the steps, against
+///    what the flaps-alone split (roll and yaw from the flaps, AeroSplit::kFlapsOnly) would
+///    have needed for the same demands, field and air: < 1 is less drag than flaps alone.
+///  - flap_drag_N_mean: the plant's flap force against the air's velocity, mean over the run.
+///  - torque_delivered_mean: mean share of the demand delivered (limits scale it down).
+void summarizeAeroUnloading(const bus::Scenario& scenario, const bus::Recording& recording, nlohmann::ordered_json& summary);
+
+}  // namespace flatsat::analysis
