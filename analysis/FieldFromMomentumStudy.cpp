@@ -23,6 +23,7 @@ namespace {
 
 struct Setup {
   sim::DynamicsParams plant;
+  vehicle::VehicleDescription onboard;  // what the estimator knows of the wheels and the body
   std::int64_t step_ns;
   double orbit_period_s;
   attitude_controller::SunPointingControllerParams controller;
@@ -79,7 +80,7 @@ Setup readSetup(const std::string& file) {
   bus::ConfigProblems problems;
   const vehicle::Vehicle craft = vehicle::readVehicle(scenario, problems);
   const auto server = dynamics_server::readParams(scenario, craft, {scenario.file, "dynamics_server", ""}, problems);
-  Setup s{server.dynamics, server.step_period_ns, server.orbit_period_s,
+  Setup s{server.dynamics, craft.onboard, server.step_period_ns, server.orbit_period_s,
           attitude_controller::readParams(scenario, craft, {file, "attitude_controller", ""}, problems).law,
           wheel_tach::readParams(scenario, craft, {file, "wheel_tach", ""}, problems).model,
           gyro::readParams(scenario, {file, "gyro", ""}, problems).model,
@@ -109,11 +110,11 @@ Result runCase(const Setup& s, const Case& c, const FieldFromMomentumStudyOption
   wheel_tach::WheelTachModel tach(s.tach);
   gyro::GyroModel gyro(s.gyro);
   estimator::FieldFromMomentumParams p;
-  p.wheels = {s.plant.body.wheel_count, s.plant.body.wheel_axes_B, s.plant.body.wheel_inertia_kg_m2};
+  p.wheels = wheelGeometryOf(s.onboard.body);
   p.quiet_s = p.pulse_s = c.window_s;
   p.settle_s = c.form.settle_s;
   p.quiet_after_s = c.form.quiet_after ? c.window_s : 0.0;
-  if (c.form.total_momentum) p.body_inertia_kg_m2 = s.plant.body.J_B_kg_m2;
+  if (c.form.total_momentum) p.body_inertia_kg_m2 = s.onboard.body.J_B_kg_m2;
   p.dipole_Am2 = c.dipole_Am2;
   p.cycle_period_s = std::max(o.cycle_s, 3 * c.window_s + c.form.settle_s);
   p.average_s = std::min(2.0, c.window_s / 4);

@@ -32,24 +32,15 @@ struct MomentumStats {
   double start = 0.0, max = 0.0, end = 0.0;
 };
 
-}  // namespace
-
-nlohmann::ordered_json summarize(const bus::Scenario& scenario, const std::string& recording_path,
-                                 const RunOutcome& launch) {
-  bus::ConfigProblems ignored;  // the scenario was checked before the run
-  const vehicle::Vehicle craft = vehicle::readVehicle(scenario, ignored);
-  const auto& plant = craft.truth;
+/// Where the pointing is judged: the body axis put on the Sun, or seed S2's
+/// orbital frame as the whole attitude's target.
+struct PointingTarget {
   Eigen::Vector3d axis_B = Eigen::Vector3d::UnitX();
-  bool s2_orbital = false;  // pointing judged against seed S2's orbital frame, not the Sun
-  if (scenario.hasComponent("attitude_controller")) {
-    const auto controller =
-        attitude_controller::readParams(scenario, craft, {scenario.file, "attitude_controller", ""}, ignored);
-    axis_B = controller.law.pointing_axis_B.normalized();
-    s2_orbital = controller.s2_orbital.has_value();
-  }
-  double capacity = plant.body.wheel_max_momentum_Nms.head(plant.body.wheel_count).minCoeff();
+  bool s2_orbital = false;
+};
 
-  const bus::Recording recording(recording_path, bus::Recording::Access::kRead);
+/// What the truth says of a run: its extent, the pointing after acquisition and the wheels.
+struct TruthFigures {
   std::uint64_t steps = 0;
   double sim_seconds = 0.0, pointing_max = 0.0, pointing_sum = 0.0;
   std::uint64_t pointing_count = 0;
@@ -58,6 +49,11 @@ nlohmann::ordered_json summarize(const bus::Scenario& scenario, const std::strin
   // A wheel saturates when its momentum reaches the limit the plant holds it
   // at (sim/RigidBodyWheels.cpp); each arrival there is one event.
   std::uint64_t saturation_events = 0;
+};
+
+TruthFigures truthFigures(const bus::Scenario& scenario, const vehicle::VehicleDescription& plant,
+                          const PointingTarget& target, const bus::Recording& recording) {
+  TruthFigures f;
   std::array<bool, sim::kMaxWheels> saturated{};
   using TruthDef = std::remove_cvref_t<decltype(bus::topics::kTruth)>;
   recording.forEach(std::string(bus::topics::kTruth.name),
@@ -65,102 +61,66 @@ nlohmann::ordered_json summarize(const bus::Scenario& scenario, const std::strin
                       const auto truth = bus::deserialize<TruthDef>(bytes);
                       const double t = static_cast<double>(truth.header().sim_time_ns()) * 1e-9;
                       const double momentum = bus::vec3(truth.h_wheels_body_Nms()).norm();
-                      if (steps == 0) h.start = momentum;
-                      h.max = std::max(h.max, momentum);
-                      h.end = momentum;
-                      sim_seconds = t;
-                      ++steps;
+                      if (f.steps == 0) f.h.start = momentum;
+                      f.h.max = std::max(f.h.max, momentum);
+                      f.h.end = momentum;
+                      f.sim_seconds = t;
+                      ++f.steps;
                       // The slower dipole command is due every `divider` steps;
                       // only a wheel command older than its step was late.
-                      if (truth.wheel_cmd_age_steps() > 0) ++late_commands;
+                      if (truth.wheel_cmd_age_steps() > 0) ++f.late_commands;
                       for (int i = 0; i < plant.body.wheel_count; ++i) {
                         const double wheel_h = plant.body.wheel_inertia_kg_m2(i) * truth.wheel_speed_rad_s()[i];
                         const bool at_limit = std::abs(wheel_h) >= plant.body.wheel_max_momentum_Nms(i) * (1 - 1e-9);
-                        if (at_limit && !saturated[i]) ++saturation_events;
+                        if (at_limit && !saturated[i]) ++f.saturation_events;
                         saturated[i] = at_limit;
                       }
                       if (t < scenario.acquisition_s) return;
                       const Eigen::Quaterniond q_NB = bus::quat(truth.q_inertial_body());
-                      const Eigen::Vector3d axis_N = q_NB * axis_B;
+                      const Eigen::Vector3d axis_N = q_NB * target.axis_B;
                       const double error =
-                          s2_orbital
+                          target.s2_orbital
                               ? Eigen::Quaterniond(sim::R_N_S2Orbital(bus::vec3(truth.r_inertial_m()),
                                                                       bus::vec3(truth.v_inertial_m_s())))
                                     .angularDistance(q_NB)
                               : std::atan2(axis_N.cross(bus::vec3(truth.sun_inertial_unit())).norm(),
                                            axis_N.dot(bus::vec3(truth.sun_inertial_unit())));
-                      pointing_max = std::max(pointing_max, error);
-                      pointing_sum += error;
-                      ++pointing_count;
+                      f.pointing_max = std::max(f.pointing_max, error);
+                      f.pointing_sum += error;
+                      ++f.pointing_count;
                     });
+  return f;
+}
 
-  // A decimated recording (recorder record_every_steps) holds every Nth truth
-  // sample only: the run's extent is then the grants the launcher counted.
-  if (!recording.meta(bus::meta::kRecordEverySteps).empty() && launch.steps > 0) {
-    steps = launch.steps;
-    sim_seconds = static_cast<double>(launch.steps - 1) * scenario.step_s;
-  }
-
-  nlohmann::ordered_json s;
-  s["scenario"] = scenario.name;
-  addCompletion(s, recording);
-  s["sim_seconds"] = sim_seconds;
-  s["wall_seconds"] = launch.step_seconds;
-  s["launch_seconds"] = launch.launch_seconds;
-  s["startup_seconds"] = launch.startup_seconds;
-  s["speed_factor"] = launch.step_seconds > 0 ? sim_seconds / launch.step_seconds : 0.0;
-  s["steps"] = steps;
-  s["steps_per_second"] = launch.step_seconds > 0 ? static_cast<double>(steps) / launch.step_seconds : 0.0;
-  s["processes"] = launch.processes;
-  s["acquisition_seconds"] = scenario.acquisition_s;
-  s["pointing_error_deg_max"] = pointing_max * kRadToDeg;
-  s["pointing_error_deg_mean"] = pointing_count ? pointing_sum / pointing_count * kRadToDeg : 0.0;
-  s["wheel_capacity_Nms"] = capacity;
-  s["wheel_momentum_Nms_start"] = h.start;
-  s["wheel_momentum_Nms_max"] = h.max;
-  s["wheel_momentum_Nms_end"] = h.end;
-  s["wheel_saturation_events"] = saturation_events;
-  s["wheel_momentum_fraction_max"] = capacity > 0 ? h.max / capacity : 0.0;
-  s["mode"] = scenario.pacing == bus::Pacing::kPaced ? "paced" : "lockstep";
-  s["wheel_commands_late"] = late_commands;
-  if (scenario.pacing == bus::Pacing::kPaced) {
-    // How evenly the ticks came: each step grant's arrival at the launcher
-    // against the period grid (rig/Progress.hpp TickJitter).
-    s["tick_jitter_us_p50"] = launch.tick_jitter.p50_us;
-    s["tick_jitter_us_p99"] = launch.tick_jitter.p99_us;
-    s["tick_jitter_us_max"] = launch.tick_jitter.max_us;
-    s["ticks_missed"] = launch.tick_jitter.missed;
-  }
+/// What the components' last recorded health samples counted.
+struct HealthFigures {
   std::map<std::string, std::array<std::uint64_t, 3>> lateness;  // stale, overruns, deadlines missed
   nlohmann::ordered_json dropped = nlohmann::ordered_json::object();  // last count by component
   std::map<std::string, std::uint64_t> refused;                     // last count by component
   std::array<double, 3> tick_late{};  // [µs] the paced time master's last p50, p99, max
+};
+
+HealthFigures healthFigures(const bus::Recording& recording) {
+  HealthFigures f;
   using HealthDef = std::remove_cvref_t<decltype(bus::topics::kHealth)>;
   recording.forEach(std::string(bus::topics::kHealth.name),
                     [&](std::uint64_t, const std::string& source, const std::vector<std::uint8_t>& bytes) {
                       const auto health = bus::deserialize<HealthDef>(bytes);
-                      lateness[source] = {health.stale_inputs(), health.overruns(), health.deadlines_missed()};
-                      dropped[source] = health.samples_dropped();
-                      refused[source] = health.commands_refused();
+                      f.lateness[source] = {health.stale_inputs(), health.overruns(), health.deadlines_missed()};
+                      f.dropped[source] = health.samples_dropped();
+                      f.refused[source] = health.commands_refused();
                       if (health.tick_late_us_max() > 0) {
-                        tick_late = {health.tick_late_us_p50(), health.tick_late_us_p99(), health.tick_late_us_max()};
+                        f.tick_late = {health.tick_late_us_p50(), health.tick_late_us_p99(), health.tick_late_us_max()};
                       }
                     });
-  if (scenario.pacing == bus::Pacing::kPaced) {
-    // How late the time master granted the steps, as it measured them
-    // (bus/TickLateness.hpp): the tick itself, not its delivery.
-    s["tick_lateness_us_p50"] = tick_late[0];
-    s["tick_lateness_us_p99"] = tick_late[1];
-    s["tick_lateness_us_max"] = tick_late[2];
-  }
-  std::uint64_t stale = 0, overruns = 0, deadlines_missed = 0;
-  for (const auto& [component, counts] : lateness) {
-    stale += counts[0];
-    overruns += counts[1];
-    deadlines_missed += counts[2];
-  }
-  // Exclusive ownership delivers one producer's samples at a time, so a
-  // change of source on a topic is a hand-over (bridge <-> emulator).
+  return f;
+}
+
+/// Exclusive ownership delivers one producer's samples at a time, so a change
+/// of source on a topic is a hand-over (bridge <-> emulator): every switch, who
+/// produced each recorded topic (emulator, bridge or external), and each
+/// component's role in the scenario.
+void addOwnership(nlohmann::ordered_json& s, const bus::Scenario& scenario, const bus::Recording& recording) {
   nlohmann::ordered_json switches = nlohmann::ordered_json::array();
   nlohmann::ordered_json producers = nlohmann::ordered_json::object();
   bus::forEachTopic([&](const auto& def) {
@@ -191,12 +151,84 @@ nlohmann::ordered_json summarize(const bus::Scenario& scenario, const std::strin
     if (!sources.empty()) producers[std::string(def.name)] = sources;
   });
   s["ownership_switches"] = switches;
-  // Who produced each recorded topic (emulator, bridge or external), and each
-  // component's role in the scenario.
   s["topic_producers"] = producers;
   nlohmann::ordered_json roles = nlohmann::ordered_json::object();
   for (const auto& c : scenario.components) roles[c.name] = c.role;
   s["roles"] = roles;
+}
+
+}  // namespace
+
+nlohmann::ordered_json summarize(const bus::Scenario& scenario, const std::string& recording_path,
+                                 const RunOutcome& launch) {
+  bus::ConfigProblems ignored;  // the scenario was checked before the run
+  const vehicle::Vehicle craft = vehicle::readVehicle(scenario, ignored);
+  const auto& plant = craft.truth;
+  PointingTarget target;
+  if (scenario.hasComponent("attitude_controller")) {
+    const auto controller =
+        attitude_controller::readParams(scenario, craft, {scenario.file, "attitude_controller", ""}, ignored);
+    target = {controller.law.pointing_axis_B.normalized(), controller.s2_orbital.has_value()};
+  }
+  double capacity = plant.body.wheel_max_momentum_Nms.head(plant.body.wheel_count).minCoeff();
+
+  const bus::Recording recording(recording_path, bus::Recording::Access::kRead);
+  const TruthFigures truth = truthFigures(scenario, plant, target, recording);
+  std::uint64_t steps = truth.steps;
+  double sim_seconds = truth.sim_seconds;
+
+  // A decimated recording (recorder record_every_steps) holds every Nth truth
+  // sample only: the run's extent is then the grants the launcher counted.
+  if (!recording.meta(bus::meta::kRecordEverySteps).empty() && launch.steps > 0) {
+    steps = launch.steps;
+    sim_seconds = static_cast<double>(launch.steps - 1) * scenario.step_s;
+  }
+
+  nlohmann::ordered_json s;
+  s["scenario"] = scenario.name;
+  addCompletion(s, recording);
+  s["sim_seconds"] = sim_seconds;
+  s["wall_seconds"] = launch.step_seconds;
+  s["launch_seconds"] = launch.launch_seconds;
+  s["startup_seconds"] = launch.startup_seconds;
+  s["speed_factor"] = launch.step_seconds > 0 ? sim_seconds / launch.step_seconds : 0.0;
+  s["steps"] = steps;
+  s["steps_per_second"] = launch.step_seconds > 0 ? static_cast<double>(steps) / launch.step_seconds : 0.0;
+  s["processes"] = launch.processes;
+  s["acquisition_seconds"] = scenario.acquisition_s;
+  s["pointing_error_deg_max"] = truth.pointing_max * kRadToDeg;
+  s["pointing_error_deg_mean"] = truth.pointing_count ? truth.pointing_sum / truth.pointing_count * kRadToDeg : 0.0;
+  s["wheel_capacity_Nms"] = capacity;
+  s["wheel_momentum_Nms_start"] = truth.h.start;
+  s["wheel_momentum_Nms_max"] = truth.h.max;
+  s["wheel_momentum_Nms_end"] = truth.h.end;
+  s["wheel_saturation_events"] = truth.saturation_events;
+  s["wheel_momentum_fraction_max"] = capacity > 0 ? truth.h.max / capacity : 0.0;
+  s["mode"] = scenario.pacing == bus::Pacing::kPaced ? "paced" : "lockstep";
+  s["wheel_commands_late"] = truth.late_commands;
+  if (scenario.pacing == bus::Pacing::kPaced) {
+    // How evenly the ticks came: each step grant's arrival at the launcher
+    // against the period grid (rig/Progress.hpp TickJitter).
+    s["tick_jitter_us_p50"] = launch.tick_jitter.p50_us;
+    s["tick_jitter_us_p99"] = launch.tick_jitter.p99_us;
+    s["tick_jitter_us_max"] = launch.tick_jitter.max_us;
+    s["ticks_missed"] = launch.tick_jitter.missed;
+  }
+  const HealthFigures health = healthFigures(recording);
+  if (scenario.pacing == bus::Pacing::kPaced) {
+    // How late the time master granted the steps, as it measured them
+    // (bus/TickLateness.hpp): the tick itself, not its delivery.
+    s["tick_lateness_us_p50"] = health.tick_late[0];
+    s["tick_lateness_us_p99"] = health.tick_late[1];
+    s["tick_lateness_us_max"] = health.tick_late[2];
+  }
+  addOwnership(s, scenario, recording);
+  std::uint64_t stale = 0, overruns = 0, deadlines_missed = 0;
+  for (const auto& [component, counts] : health.lateness) {
+    stale += counts[0];
+    overruns += counts[1];
+    deadlines_missed += counts[2];
+  }
   // [s] from the launch to each external component's first health sample.
   s["external_joined_s"] = launch.external_joined_s;
   if (!launch.restarts.empty()) s["restarts"] = launch.restarts;
@@ -206,11 +238,11 @@ nlohmann::ordered_json summarize(const bus::Scenario& scenario, const std::strin
   // Received samples that did not decode, as each component's last recorded
   // health counted them (a rogue or broken writer on the bus).
   std::uint64_t dropped_total = 0;
-  for (const auto& [component, count] : dropped.items()) dropped_total += count.get<std::uint64_t>();
+  for (const auto& [component, count] : health.dropped.items()) dropped_total += count.get<std::uint64_t>();
   s["samples_dropped"] = dropped_total;
-  s["samples_dropped_by_component"] = dropped;
+  s["samples_dropped_by_component"] = health.dropped;
   std::uint64_t refused_total = 0;  // mode, fault and parameter commands refused with a reason
-  for (const auto& [component, count] : refused) refused_total += count;
+  for (const auto& [component, count] : health.refused) refused_total += count;
   s["commands_refused"] = refused_total;
   addTrustMetrics(s, recording);
   addFieldFromMomentumMetrics(s, scenario, recording);

@@ -122,8 +122,10 @@ class Writer {
 /// `producers` (a rig's participants bear their component's name). Empty: any
 /// writer's. Another writer is reported to `on_foreign` (on a Fast DDS
 /// thread) as it matches and at each of its samples, which are dropped: with
-/// the writer's GUID, its participant's name ("" when unknown), whether it is
-/// the first report of that writer and whether a sample was dropped.
+/// the writer's GUID (empty after its first report: only the first names the
+/// writer, so later refusals skip formatting it), its participant's
+/// name ("" when unknown), whether it is the first report of that writer and
+/// whether a sample was dropped.
 struct WriterTrust {
   std::vector<std::string> producers;
   /// A topic every component writes (StepDone, health): a sample is taken
@@ -132,6 +134,16 @@ struct WriterTrust {
   bool source_is_participant = false;
   std::function<void(const std::string& writer_guid, const std::string& participant, bool first, bool sample)>
       on_foreign;
+};
+
+/// When and from whom a sample came: what a watching reader (an operator
+/// tool) hands over with each sample.
+struct Arrival {
+  std::chrono::steady_clock::time_point wall;  ///< when it was taken
+  eprosima::fastrtps::rtps::GUID_t writer;
+  /// Written before the reader subscribed: a transient-local topic's history,
+  /// not part of the live stream (rates skip it).
+  bool historical = false;
 };
 
 /// Typed reader for one registry topic; every valid sample is handed to a
@@ -153,6 +165,28 @@ class Reader : private eprosima::fastdds::dds::DataReaderListener {
   /// (paced stepped topics: QosTuning::lease) passes without a sample, with the
   /// header.source of the last sample ("" before the first).
   using DeadlineCallback = std::function<void(const std::string& source)>;
+
+  /// A watching reader's callback: every writer's samples, with their Arrival.
+  using ArrivalCallback = std::function<void(const Sample&, const Arrival&)>;
+  /// A watching reader's liveliness: a writer's lost (false) or regained (true), by its GUID.
+  using WriterLivelinessCallback = std::function<void(const eprosima::fastrtps::rtps::GUID_t& writer, bool alive)>;
+
+  /// A watching reader, as the operator tools read a rig (over DDS only): every
+  /// writer's samples with their Arrival, on the watching QoS (watchingQos:
+  /// stepped topics live and best-effort, so watching adds no protocol work).
+  Reader(Bus& bus, const Def& def, ArrivalCallback on_sample, WriterLivelinessCallback on_liveliness = {})
+      : name_(def.name),
+        on_arrival_(std::move(on_sample)),
+        on_writer_liveliness_(std::move(on_liveliness)),
+        subscribed_ns_(std::chrono::duration_cast<std::chrono::nanoseconds>(
+                           std::chrono::system_clock::now().time_since_epoch())
+                           .count()) {
+    if (bus.localHub() != nullptr) throw std::logic_error("a watching reader reads over DDS: " + name_);
+    bus_ = &bus;
+    auto& topic = bus.topic(std::string(def.name),
+                            new GuardedType<typename Def::PubSubType>(bus.dropCounter()));
+    reader_ = bus.createReader(topic, watchingQos(def.qos, static_cast<bool>(on_writer_liveliness_)), this);
+  }
 
   /// `trust`: whose samples it takes (over DDS; in process every writer is the rig's own code).
   Reader(Bus& bus, const Def& def, Callback on_sample, LivelinessCallback on_liveliness = {},
@@ -206,6 +240,13 @@ class Reader : private eprosima::fastdds::dds::DataReaderListener {
     Sample sample;
     eprosima::fastdds::dds::SampleInfo info;
     while (reader->take_next_sample(&sample, &info) == ReturnCode_t::RETCODE_OK) {
+      if (on_arrival_) {
+        if (info.valid_data) {
+          on_arrival_(sample, {std::chrono::steady_clock::now(), info.sample_identity.writer_guid(),
+                               info.source_timestamp.to_ns() < subscribed_ns_});
+        }
+        continue;
+      }
       if (!info.valid_data || !trusted(info.publication_handle, sample.header())) continue;
       if (on_liveliness_ || on_deadline_) {
         std::lock_guard lock(sources_mutex_);
@@ -217,6 +258,13 @@ class Reader : private eprosima::fastdds::dds::DataReaderListener {
   }
   void on_liveliness_changed(eprosima::fastdds::dds::DataReader*,
                              const eprosima::fastdds::dds::LivelinessChangedStatus& status) override {
+    if (on_writer_liveliness_) {
+      eprosima::fastrtps::rtps::GUID_t writer;
+      eprosima::fastrtps::rtps::iHandle2GUID(writer, status.last_publication_handle);
+      if (status.not_alive_count_change > 0) on_writer_liveliness_(writer, false);
+      if (status.alive_count_change > 0) on_writer_liveliness_(writer, true);
+      return;
+    }
     if (!on_liveliness_) return;
     std::string source;
     bool another_writer = false;  // of the same source: a restarted process that came back first
@@ -307,6 +355,7 @@ class Reader : private eprosima::fastdds::dds::DataReaderListener {
   void foreign(const eprosima::fastdds::dds::InstanceHandle_t& writer, const std::string& participant, bool first,
                bool sample) {
     if (!trust_.on_foreign) return;
+    if (!first) return trust_.on_foreign({}, participant, false, sample);  // counted only: its GUID was told
     eprosima::fastrtps::rtps::GUID_t guid;
     eprosima::fastrtps::rtps::iHandle2GUID(guid, writer);
     std::ostringstream text;
@@ -316,6 +365,9 @@ class Reader : private eprosima::fastdds::dds::DataReaderListener {
 
   std::string name_;
   Callback on_sample_;
+  ArrivalCallback on_arrival_;                      // a watching reader's
+  WriterLivelinessCallback on_writer_liveliness_;   // a watching reader's
+  std::int64_t subscribed_ns_ = 0;                  // [ns] system clock, as the writers' source timestamps
   LivelinessCallback on_liveliness_;
   DeadlineCallback on_deadline_;
   WriterTrust trust_;

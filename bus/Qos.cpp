@@ -63,4 +63,13 @@ dds::DataReaderQos readerQos(QosKind kind, const QosTuning& tuning, bool watch_l
   return qos;
 }
 
+eprosima::fastdds::dds::DataReaderQos watchingQos(QosKind kind, bool watch_liveliness) {
+  auto qos = readerQos(kind, {}, watch_liveliness);
+  if (kind != QosKind::kState && kind != QosKind::kCommand) {  // stepped streams
+    qos.durability().kind = eprosima::fastdds::dds::VOLATILE_DURABILITY_QOS;
+    qos.reliability().kind = eprosima::fastdds::dds::BEST_EFFORT_RELIABILITY_QOS;
+  }
+  return qos;
+}
+
 }  // namespace flatsat::bus

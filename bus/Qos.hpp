@@ -90,5 +90,14 @@ eprosima::fastdds::dds::DataWriterQos writerQos(QosKind kind, const QosTuning& t
 /// why that matters). Paced stepped readers always watch (QosTuning).
 eprosima::fastdds::dds::DataReaderQos readerQos(QosKind kind, const QosTuning& tuning = {},
                                                 bool watch_liveliness = false);
+/// A watching reader's QoS (the operator tools: Reader's watching
+/// constructor): the preset's, so ownership and the like match the writers,
+/// except that stepped topics are read volatile and best-effort. A tool
+/// watches the live stream: the writers' history would replay old steps and
+/// skew rates, and a best-effort reader never acknowledges, so attaching a
+/// tool adds no protocol work to a rig in lockstep. State and command topics
+/// keep their transient-local history: the last health of every component is
+/// the point.
+eprosima::fastdds::dds::DataReaderQos watchingQos(QosKind kind, bool watch_liveliness);
 
 }  // namespace flatsat::bus

@@ -20,5 +20,6 @@ void installShutdownHandlers() {
 
 bool shutdownRequested() { return g_shutdown.load(); }
 void requestShutdown() { g_shutdown.store(true); }
+void clearShutdownRequest() { g_shutdown.store(false); }
 
 }  // namespace flatsat::bus

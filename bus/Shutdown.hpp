@@ -10,5 +10,7 @@ void installShutdownHandlers();
 bool shutdownRequested();
 /// For tests hosting several nodes in one process: ask them all to stop.
 void requestShutdown();
+/// For such a test once its nodes stopped: the next test's nodes may run.
+void clearShutdownRequest();
 
 }  // namespace flatsat::bus

@@ -65,8 +65,8 @@ int send(const Def& def, typename Def::Type command, const std::string& what, co
   std::mutex mutex;
   std::condition_variable arrived;
   std::optional<msg::CommandAck> ack;
-  Tap<std::remove_cvref_t<decltype(bus::topics::kCommandAck)>> acks(
-      tool_bus, bus::topics::kCommandAck, [&](const msg::CommandAck& a, const Arrival&) {
+  bus::ReaderOf<bus::topics::kCommandAck> acks(
+      tool_bus.bus(), bus::topics::kCommandAck, [&](const msg::CommandAck& a, const Arrival&) {
         if (a.command_id() != id) return;
         {
           std::lock_guard lock(mutex);

@@ -57,7 +57,7 @@ int echo(const Def& def, const EchoOptions& o) {
   ToolBus tool_bus("echo", o.domain);
   std::mutex mutex;
   std::uint64_t printed = 0;
-  Tap<Def> tap(tool_bus, def, [&](const typename Def::Type& sample, const Arrival&) {
+  bus::Reader<Def> reader(tool_bus.bus(), def, [&](const typename Def::Type& sample, const Arrival&) {
     const auto json = msg::toJson(sample);
     std::string text;
     if (o.json) {

@@ -84,7 +84,7 @@ int health(const HealthOptions& o) {
   ToolBus tool_bus("health", o.domain);
   std::mutex mutex;
   std::map<std::string, HealthEntry> entries;  // by component (header.source)
-  HealthTap tap(tool_bus, mutex, entries);
+  HealthWatcher watcher(tool_bus, mutex, entries);
   const auto snapshot = [&] {
     std::lock_guard lock(mutex);
     return healthTable(entries, tool_bus);

@@ -38,9 +38,9 @@ double ageSeconds(const msg::Health& h) {
 
 }  // namespace
 
-HealthTap::HealthTap(ToolBus& tool_bus, std::mutex& mutex, std::map<std::string, HealthEntry>& entries)
-    : tap_(
-          tool_bus, bus::topics::kHealth,
+HealthWatcher::HealthWatcher(ToolBus& tool_bus, std::mutex& mutex, std::map<std::string, HealthEntry>& entries)
+    : reader_(
+          tool_bus.bus(), bus::topics::kHealth,
           [&mutex, &entries](const msg::Health& h, const Arrival& a) {
             std::lock_guard lock(mutex);
             entries[bus::text(h.header().source())] = {h, a.writer, true};

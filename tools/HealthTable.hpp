@@ -25,12 +25,12 @@ struct HealthEntry {
 /// health older than bus::kHealthLate), message (`flatsat health --json`, the web view).
 /// Each component's newest health into `entries` (under `mutex`) as it
 /// arrives, its writer marked dead when its liveliness lapses.
-class HealthTap {
+class HealthWatcher {
  public:
-  HealthTap(ToolBus& tool_bus, std::mutex& mutex, std::map<std::string, HealthEntry>& entries);
+  HealthWatcher(ToolBus& tool_bus, std::mutex& mutex, std::map<std::string, HealthEntry>& entries);
 
  private:
-  Tap<HealthDef> tap_;
+  bus::Reader<HealthDef> reader_;
 };
 
 nlohmann::ordered_json healthTable(const std::map<std::string, HealthEntry>& entries, const ToolBus& tool_bus);

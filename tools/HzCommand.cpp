@@ -53,7 +53,7 @@ int hz(const Def& def, const HzOptions& o) {
   ToolBus tool_bus("hz", o.domain);
   std::mutex mutex;
   std::vector<Clock::time_point> arrivals;
-  Tap<Def> tap(tool_bus, def, [&](const typename Def::Type& sample, const Arrival& a) {
+  bus::Reader<Def> reader(tool_bus.bus(), def, [&](const typename Def::Type& sample, const Arrival& a) {
     if (a.historical) return;  // written before we listened: not part of the stream
     if (!o.source.empty() && bus::text(sample.header().source()) != o.source) return;
     std::lock_guard lock(mutex);

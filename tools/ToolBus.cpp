@@ -140,15 +140,6 @@ std::string ToolBus::participantName(const GuidPrefix& prefix) const {
   return it == participants_.end() ? std::string() : it->second.name;
 }
 
-dds::DataReaderQos tapQos(bus::QosKind kind, bool watch_liveliness) {
-  dds::DataReaderQos qos = bus::readerQos(kind, {}, watch_liveliness);
-  if (kind != bus::QosKind::kState && kind != bus::QosKind::kCommand) {  // stepped streams
-    qos.durability().kind = dds::VOLATILE_DURABILITY_QOS;
-    qos.reliability().kind = dds::BEST_EFFORT_RELIABILITY_QOS;
-  }
-  return qos;
-}
-
 std::string_view shortTopicName(std::string_view topic) {
   const auto slash = topic.rfind('/');
   return slash == std::string_view::npos ? topic : topic.substr(slash + 1);

@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: Apache-2.0
 #pragma once
 // What the live operator tools (topics, echo, hz, health) share: a DDS
-// participant that joins any rig's domain and remembers what discovery saw,
-// and a typed reader ("tap") that hands over every sample with its writer
-// and arrival time. The tools know the topic registry, never the scenario.
+// participant that joins any rig's domain and remembers what discovery saw.
+// They read with bus::Reader's watching constructor (every sample with its
+// writer and arrival time). The tools know the topic registry, never the scenario.
 #include <chrono>
 #include <cstdint>
 #include <functional>
@@ -18,13 +18,9 @@
 
 #include <CLI/CLI.hpp>
 #include <fastdds/dds/domain/DomainParticipantListener.hpp>
-#include <fastdds/dds/subscriber/DataReader.hpp>
-#include <fastdds/dds/subscriber/DataReaderListener.hpp>
-#include <fastdds/dds/subscriber/SampleInfo.hpp>
-#include <fastdds/dds/subscriber/qos/DataReaderQos.hpp>
 
 #include "bus/Bus.hpp"
-#include "bus/GuardedType.hpp"
+#include "bus/Endpoints.hpp"
 #include "bus/Topics.hpp"
 #include "msg/MsgJson.hpp"
 
@@ -93,80 +89,9 @@ class ToolBus : private eprosima::fastdds::dds::DomainParticipantListener {
   std::unique_ptr<bus::Bus> bus_;  // last: destroyed first, before what its callbacks touch
 };
 
-/// When and from whom a sample came.
-struct Arrival {
-  Clock::time_point wall;  ///< when the tool took it
-  Guid writer;
-  /// Written before the tool subscribed: a transient-local topic's history,
-  /// not part of the live stream (rates skip it).
-  bool historical = false;
-};
-
-/// Reader QoS of a tool: the registry's preset (so ownership and the like
-/// match the writers), except that stepped topics are read volatile and
-/// best-effort. A tool watches the live stream: the
-/// writers' history would replay old steps and skew rates, and a
-/// best-effort reader never acknowledges, so attaching a tool adds no
-/// protocol work to a rig in lockstep. State and command topics keep their
-/// transient-local history: the last health of every component is the point.
-/// `watch_liveliness` as bus::readerQos's.
-eprosima::fastdds::dds::DataReaderQos tapQos(bus::QosKind kind, bool watch_liveliness);
-
-/// A typed reader of one registry topic for tools; the callback runs on a
-/// Fast DDS thread.
-template <class Def>
-class Tap : private eprosima::fastdds::dds::DataReaderListener {
- public:
-  using Sample = typename Def::Type;
-  using Callback = std::function<void(const Sample&, const Arrival&)>;
-  /// A writer's liveliness lost (false) or regained (true), on a Fast DDS thread.
-  using LivelinessCallback = std::function<void(const Guid& writer, bool alive)>;
-
-  Tap(ToolBus& tool_bus, const Def& def, Callback on_sample, LivelinessCallback on_liveliness = {})
-      : on_sample_(std::move(on_sample)),
-        on_liveliness_(std::move(on_liveliness)),
-        bus_(tool_bus.bus()),
-        subscribed_ns_(std::chrono::duration_cast<std::chrono::nanoseconds>(
-                           std::chrono::system_clock::now().time_since_epoch())
-                           .count()) {
-    auto& topic = tool_bus.bus().topic(std::string(def.name),
-                                       new bus::GuardedType<typename Def::PubSubType>(
-                                                     tool_bus.bus().dropCounter()));
-    reader_ = bus_.createReader(topic, tapQos(def.qos, static_cast<bool>(on_liveliness_)), this);
-  }
-  ~Tap() override {
-    reader_->set_listener(nullptr);
-    bus_.deleteReader(reader_);
-  }
-  Tap(const Tap&) = delete;
-  Tap& operator=(const Tap&) = delete;
-
- private:
-  void on_data_available(eprosima::fastdds::dds::DataReader* reader) override {
-    Sample sample;
-    eprosima::fastdds::dds::SampleInfo info;
-    while (reader->take_next_sample(&sample, &info) == ReturnCode_t::RETCODE_OK) {
-      if (!info.valid_data) continue;
-      on_sample_(sample, {Clock::now(), info.sample_identity.writer_guid(),
-                          info.source_timestamp.to_ns() < subscribed_ns_});
-    }
-  }
-
-  void on_liveliness_changed(eprosima::fastdds::dds::DataReader*,
-                             const eprosima::fastdds::dds::LivelinessChangedStatus& status) override {
-    if (!on_liveliness_) return;
-    Guid writer;
-    eprosima::fastrtps::rtps::iHandle2GUID(writer, status.last_publication_handle);
-    if (status.not_alive_count_change > 0) on_liveliness_(writer, false);
-    if (status.alive_count_change > 0) on_liveliness_(writer, true);
-  }
-
-  Callback on_sample_;
-  LivelinessCallback on_liveliness_;
-  bus::Bus& bus_;
-  std::int64_t subscribed_ns_;  ///< [ns] system clock, as the writers' source timestamps
-  eprosima::fastdds::dds::DataReader* reader_ = nullptr;
-};
+/// A sample's arrival, as bus::Reader's watching constructor (the one the
+/// tools read with) hands it over.
+using bus::Arrival;
 
 /// "truth" for "flatsat/truth".
 std::string_view shortTopicName(std::string_view topic);

@@ -26,13 +26,13 @@ struct TopicsOptions {
   bool json = false;
 };
 
-/// Samples of one writer written after the tap subscribed.
+/// Samples of one writer written after the reader subscribed.
 struct Stream {
   std::uint64_t samples = 0;
   Clock::time_point first{}, last{};
 };
 
-/// What one topic's tap saw.
+/// What one topic's reader saw.
 struct TopicStats {
   std::string name;
   std::string type;
@@ -98,14 +98,14 @@ int runTopics(const TopicsOptions& o) {
   std::mutex mutex;
   std::map<std::string, TopicStats> stats;   // by topic name
   std::map<GuidPrefix, std::string> sources;  // participant -> header.source it writes
-  std::vector<std::shared_ptr<void>> taps;
+  std::vector<std::shared_ptr<void>> readers;
   bus::forEachTopic([&](const auto& def) {
     using Def = std::remove_cvref_t<decltype(def)>;
     auto& entry = stats[std::string(def.name)];
     entry.name = def.name;
     entry.type = typename Def::PubSubType().getName();
-    taps.push_back(std::make_shared<Tap<Def>>(
-        tool_bus, def, [&mutex, &entry, &sources](const typename Def::Type& sample, const Arrival& a) {
+    readers.push_back(std::make_shared<bus::Reader<Def>>(
+        tool_bus.bus(), def, [&mutex, &entry, &sources](const typename Def::Type& sample, const Arrival& a) {
           std::lock_guard lock(mutex);
           entry.writers.insert(a.writer);
           // Every sample names its producer (Health's header.source names the component).
@@ -121,7 +121,7 @@ int runTopics(const TopicsOptions& o) {
     std::cerr << "flatsat topics: listening on domain " << tool_bus.domain() << "\n";
   }
   listen(o.seconds, mutex, stats);
-  taps.clear();  // no callback runs past here
+  readers.clear();  // no callback runs past here
 
   const auto participants = tool_bus.participants();
   const auto nameOf = [&](const Guid& guid) {

@@ -101,7 +101,7 @@ class LiveState {
   explicit LiveState(ToolBus& tool_bus)
       : tool_bus_(tool_bus),
         health_(tool_bus, mutex_, entries_),
-        truth_(tool_bus, bus::topics::kTruth, [this](const msg::TruthState& t, const Arrival&) {
+        truth_(tool_bus.bus(), bus::topics::kTruth, [this](const msg::TruthState& t, const Arrival&) {
           std::lock_guard lock(mutex_);
           const double t_s = static_cast<double>(t.header().sim_time_ns()) * 1e-9;
           if (!points_.empty() && t_s <= points_.back().t_s) points_.clear();  // a new run
@@ -138,8 +138,8 @@ class LiveState {
   mutable std::mutex mutex_;
   std::map<std::string, HealthEntry> entries_;
   std::deque<Point> points_;
-  HealthTap health_;
-  Tap<TruthDef> truth_;
+  HealthWatcher health_;
+  bus::Reader<TruthDef> truth_;
 };
 
 void reply(int fd, const std::string& status, const std::string& type, const std::string& body) {

@@ -45,6 +45,23 @@ std::vector<std::string> VehicleDescription::validate() const {
   if (!torquer_max_dipole_Am2.allFinite() || (torquer_max_dipole_Am2.array() < 0.0).any()) {
     errors.push_back("torquer_max_dipole_Am2: every coil limit must be finite and ≥ 0");
   }
+  for (std::size_t i = 0; i < panels.size(); ++i) {
+    appendNested("panels[" + std::to_string(i) + "]", panels[i].validate(), errors);
+  }
+  if (thrusters.size() > static_cast<std::size_t>(sim::kMaxThrusters)) {
+    errors.push_back("thrusters: " + std::to_string(thrusters.size()) + " thrusters, at most " +
+                     std::to_string(sim::kMaxThrusters));
+  }
+  for (std::size_t i = 0; i < thrusters.size(); ++i) {
+    appendNested("thrusters[" + std::to_string(i) + "]", thrusters[i].validate(), errors);
+  }
+  appendNested("flaps", flaps.validate(), errors);
+  if (atmosphere) appendNested("atmosphere", atmosphere->validate(), errors);
+  if (!(density_kg_m3 >= 0.0 && std::isfinite(density_kg_m3))) errors.push_back("density_kg_m3: must be finite and ≥ 0");
+  if (orbit_track.propagator == sim::OrbitPropagation::kNumerical && orbit_track.forces.drag && !atmosphere) {
+    errors.push_back("orbit_track.forces.drag: needs an atmosphere model (the constant density is for the panels only)");
+  }
+  if (!residual_dipole_B_Am2.allFinite()) errors.push_back("residual_dipole_B_Am2: must be finite");
   appendNested("sensors", sensors.validate(), errors);
   const int thruster_count = static_cast<int>(thrusters.size());
   for (std::size_t i = 0; i < faults.size(); ++i) {

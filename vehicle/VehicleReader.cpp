@@ -182,20 +182,21 @@ void readAtmosphere(const bus::Scenario& scenario, bus::ParamReader& environment
 }
 
 /// `onboard:`: what flight software believes where it differs from the truth.
+/// Each item is checked only where the section gives it: the truth's own
+/// problems are reported once, at the truth's keys.
 void readOnboard(const bus::Scenario& scenario, bus::ParamReader onboard, const FieldFiles& files,
                  VehicleDescription& v) {
   onboard.read("inertia_kg_m2", v.body.J_B_kg_m2, "kg m^2");
   auto wheels = onboard.section("wheels");
-  if (wheels.has("axes_body")) {
-    int count = 0;
-    wheels.read("axes_body", v.body.wheel_axes_B, count);
-    if (count != v.body.wheel_count) {
-      wheels.problem("axes_body", std::to_string(count) + " axes for " + std::to_string(v.body.wheel_count) +
-                                      " wheels (spacecraft.wheels)");
-    }
+  int count = v.body.wheel_count;
+  wheels.read("axes_body", v.body.wheel_axes_B, count);
+  // A list that does not read leaves the count as it was: its own problem says why.
+  if (count != v.body.wheel_count) {
+    wheels.problem("axes_body", std::to_string(count) + " axes for " + std::to_string(v.body.wheel_count) +
+                                    " wheels (spacecraft.wheels)");
   }
   wheels.finish();
-  onboard.problems(v.body.validate());
+  if (onboard.has("inertia_kg_m2") || onboard.has("wheels")) onboard.problems(v.body.validate());
   if (onboard.has("sensors")) readSensorMountings(onboard.section("sensors"), v.sensors);
   if (onboard.has("field_model")) {
     std::string model;
@@ -204,17 +205,20 @@ void readOnboard(const bus::Scenario& scenario, bus::ParamReader onboard, const 
     named_by_environment.igrf_key = named_by_environment.wmm_key = "field_model";
     loadField(scenario, onboard, "field_model", model, named_by_environment, v.epoch, v.field);
   }
-  readDegree(onboard, v.field);
-  auto orbit = onboard.section("orbit");
-  std::string propagator = "truth";
-  orbit.read("propagator", propagator);
-  if (propagator == "kepler") {
-    v.orbit_track = sim::OrbitTrackParams{};
-  } else if (propagator != "truth") {
-    orbit.problem("propagator", "'" + propagator + "' is neither truth nor kepler");
+  if (onboard.has("field_degree")) readDegree(onboard, v.field);
+  if (onboard.has("orbit")) {
+    auto orbit = onboard.section("orbit");
+    std::string propagator = "truth";
+    orbit.read("propagator", propagator);
+    if (propagator == "kepler") {
+      // Two-body only; the mass and areas stay the spacecraft's (station keeping's thrust).
+      v.orbit_track.propagator = sim::OrbitPropagation::kKepler;
+    } else if (propagator != "truth") {
+      orbit.problem("propagator", "'" + propagator + "' is neither truth nor kepler");
+    }
+    readElements(orbit, v.orbit);
+    orbit.finish();
   }
-  readElements(orbit, v.orbit);
-  orbit.finish();
   if (onboard.has("faults")) v.faults = readActuatorFaults(onboard, v);
   onboard.finish();
 }
@@ -222,6 +226,7 @@ void readOnboard(const bus::Scenario& scenario, bus::ParamReader onboard, const 
 }  // namespace
 
 Vehicle readVehicle(const bus::Scenario& scenario, bus::ConfigProblems& problems) {
+  const std::size_t problems_before = problems.list().size();
   Vehicle vehicle;
   VehicleDescription& truth = vehicle.truth;
   readOrbit(scenario.section("orbit", problems), truth);
@@ -241,6 +246,12 @@ Vehicle readVehicle(const bus::Scenario& scenario, bus::ConfigProblems& problems
 
   vehicle.onboard = truth;
   readOnboard(scenario, scenario.section("onboard", problems), files, vehicle.onboard);
+  // The sections report their problems at their keys; what only the whole
+  // description shows is reported once they are clean.
+  if (problems.list().size() == problems_before) {
+    for (const auto& error : truth.validate()) problems.add(scenario.file + ": vehicle: " + error);
+    for (const auto& error : vehicle.onboard.validate()) problems.add(scenario.file + ": onboard: " + error);
+  }
   return vehicle;
 }
 
@@ -249,6 +260,14 @@ Vehicle vehicleOf(const bus::Scenario& scenario) {
   Vehicle vehicle = readVehicle(scenario, problems);
   if (!problems.empty()) throw bus::ScenarioError(problems.joined());
   return vehicle;
+}
+
+void refuseMovedKeys(bus::ParamReader& section, const std::vector<std::pair<std::string, std::string>>& moved) {
+  for (const auto& [key, now_at] : moved) {
+    if (!section.has(key)) continue;
+    section.problem(key, "moved to the vehicle's description: give it as " + now_at);
+    section.leave({key});
+  }
 }
 
 std::vector<std::string> toActuatorFault(const msg::FaultCmd& command, int wheels, int thrusters,

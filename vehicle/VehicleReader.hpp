@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #pragma once
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bus/NodeMain.hpp"
@@ -24,6 +25,15 @@ Vehicle vehicleOf(const bus::Scenario& scenario);
 
 /// The keys of `environment` readVehicle() reads; the dynamics server reads the rest.
 extern const std::vector<std::string> kEnvironmentKeys;
+
+/// Keys a component's section held before the vehicle took them over, each
+/// {old key, where it is given now}: one that is still given is refused with
+/// the new place, and finish() does not call it unknown.
+void refuseMovedKeys(bus::ParamReader& section, const std::vector<std::pair<std::string, std::string>>& moved);
+
+/// The onboard models' keys of the estimator and the controllers, now the onboard view's.
+inline const std::vector<std::pair<std::string, std::string>> kMovedReferenceKeys = {
+    {"reference_field", "onboard.field_model"}, {"reference_orbit", "onboard.orbit.propagator"}};
 
 /// A fault command to the dynamics server as an actuator fault, for a plant
 /// with that many wheels and thrusters; every problem (empty: valid).

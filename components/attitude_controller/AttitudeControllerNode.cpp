@@ -77,6 +77,7 @@ AttitudeControllerNodeParams readParams(const bus::Scenario& scenario, const veh
   SunPointingControllerParams& p = node.law;
   p.wheels = wheelGeometryOf(known.body);
   auto r = scenario.componentParams(args.name, problems);
+  vehicle::refuseMovedKeys(r, vehicle::kMovedReferenceKeys);
   r.read("kp_Nm_per_rad", p.kp_Nm_per_rad, "N m/rad");
   r.read("kd_Nm_s_per_rad", p.kd_Nm_s_per_rad, "N m s/rad");
   r.read("max_torque_Nm", p.max_torque_Nm, "N m");

@@ -121,6 +121,7 @@ DynamicsServerParams readParams(const bus::Scenario& scenario, const vehicle::Ve
   DynamicsServerParams params;
   DynamicsParams& p = params.dynamics;
   p = truthPlant(vehicle.truth);
+  const std::size_t problems_before = problems.list().size();
   params.faults = vehicle.truth.faults;
   auto environment = scenario.section("environment", problems);
   environment.read("gravity_gradient", p.gravity_gradient);
@@ -130,8 +131,7 @@ DynamicsServerParams readParams(const bus::Scenario& scenario, const vehicle::Ve
   readInitial(scenario.section("initial", problems), p, scenario.seedFor("initial"));
 
   auto own = scenario.componentParams(args.name, problems);
-  if (own.has("faults")) own.problem("faults", "actuator faults are the vehicle's: give them as spacecraft.faults");
-  own.leave({"faults"});
+  vehicle::refuseMovedKeys(own, {{"faults", "spacecraft.faults"}});
   own.read("substeps", p.substeps);
   std::string attitude = "free";
   own.read("attitude", attitude);
@@ -140,11 +140,15 @@ DynamicsServerParams readParams(const bus::Scenario& scenario, const vehicle::Ve
   } else if (attitude != "free") {
     own.problem("attitude", "'" + attitude + "' is neither free nor held_east_north_zenith");
   }
-  // The vehicle's sections report their own problems at their keys; validate()
-  // adds only what they cannot see (the server's own keys, or anything once they are clean).
-  const bool vehicle_clean = vehicle.truth.validate().empty() && vehicle.onboard.validate().empty();
+  // The vehicle reader reports the vehicle's problems; of validate()'s, the
+  // server reports its own keys' (the initial state, substeps), the initial
+  // state's only when its section read cleanly (its reader names the key).
+  const bool initial_read = problems.list().size() == problems_before;
   for (const std::string& error : p.validate()) {
-    if (vehicle_clean || error.rfind("substeps", 0) == 0) own.problems({error});
+    const auto owns = [&](const char* field) { return error.rfind(field, 0) == 0; };
+    const bool initial = owns("q0_NB") || owns("w0_NB_B_rad_s") || owns("wheel_speed0_rad_s") ||
+                         owns("disturbance_torque_B_Nm");
+    if (owns("substeps") || (initial && initial_read)) own.problems({error});
   }
   own.finish();
 

@@ -304,6 +304,7 @@ EstimatorNodeParams readParams(const bus::Scenario& scenario, const vehicle::Veh
   EstimatorNodeParams p;
   p.jd_epoch_utc = sim::julianDate(known.epoch);
   auto r = scenario.componentParams(args.name, problems);
+  vehicle::refuseMovedKeys(r, vehicle::kMovedReferenceKeys);
   std::string method = "mahony";
   r.read("method", method);
   if (method == "mekf") {

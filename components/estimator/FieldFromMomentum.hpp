@@ -39,32 +39,16 @@ struct FieldSolution {
 };
 
 /// The torque a dipole step adds, from the momentum balance in the rotating body
-/// frame, dH/dt = T_ext − ω × H (the seed's equations for ω about x). For each
-/// interval i (quiet before A, pulse P, quiet after C):
+/// frame, dH/dt = T_ext − ω × H (seed S0, DE3606636). For each interval i (quiet
+/// before A, pulse P, quiet after C):
 ///
 ///   ∫T_i = H(end_i) − H(start_i) + ∫_i ω × H dt
-///   (m·τ_P) × B = ∫T_P − d_P·τ_P,   B⊥m = (ΔT × m) / (|m|²·τ_P)     ((m × B) × m = |m|² B⊥m)
+///   (m·τ_P) × B = ∫T_P − d_P·τ_P,   B⊥m = (ΔT × m) / (|m|²·τ_P)
 ///
-/// where d_P is the disturbance torque during the pulse (P runs on for settle_s after
-/// the dipole is off, while the attitude loop moves the impulse into the wheels). Without a quiet interval
-/// after the pulse, d_P = ∫T_A/τ_A: with m = Mx·x̂ and ∫ω × H by the rectangle rule
-/// this is the seed's By(t0), Bz(t0) with Q2 = 1/(Mx·Δt2), Q21 = Δt2/Δt1,
-/// Q31 = Δt3/Δt1, and a constant disturbance drops out. With one, d_P is the
-/// disturbance of A and C interpolated linearly to the pulse's mid-time, so a
-/// disturbance that changes linearly drops out too (gravity gradient turns at
-/// twice the orbit rate: over a minute its change is of the order of the pulse's
-/// own torque for a large spacecraft). Departures from the seed, each tested: the
-/// rotation integral uses every sample (trapezoid); the quiet interval after the
-/// pulse; and H may be the total momentum (wheels + J ω from the gyro), so the
-/// torque counts whether the attitude loop has moved it into the wheels yet or
-/// not. The result is the field's mean over the pulse (the seed attributes it to t0:
-/// the derivation integrates B over the pulse, so its mid-point is the right time).
-///
-/// Momentum values at t0, t1, pulse_end, t2 are means over `average_s` on the quiet
-/// side of each instant (noise falls as 1/√N), so each interval holds the whole
-/// pulse or none of it; the intervals run between the means' centroids, exact for
-/// momentum linear in time within each stretch. Without a quiet interval of at
-/// least 2·average_s after the pulse, pulse_end is a single sample.
+/// with d_P the disturbance during the pulse (from A alone, or A and C interpolated
+/// to the pulse's mid-time). The result is the field's mean over the pulse. The
+/// seed's closed form as a special case, the departures from it and the momentum
+/// means at each instant: docs/s0_study.md, "The momentum balance, derived".
 class FieldFromMomentum {
  public:
   /// @param average_s [s] averaging span of the momentum at each instant, ≥ 0 (0: one sample),

@@ -94,6 +94,7 @@ MagnetometerBridgeNodeParams readParams(const bus::Scenario& scenario, const veh
   p.bridge.q_body_sensor = vehicle.onboard.sensors.q_body_magnetometer;  // flight software's belief
   p.device = defaultDevicePath(args);
   auto r = scenario.componentParams(args.name, problems);
+  vehicle::refuseMovedKeys(r, {{"q_body_sensor", "spacecraft.sensors.magnetometer.q_body_sensor"}});
   r.read("device", p.device);
   r.read("baud", p.baud);
   r.read("range_T", p.bridge.range_T, "T");

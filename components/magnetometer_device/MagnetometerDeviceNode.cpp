@@ -96,6 +96,7 @@ MagnetometerDeviceParams readParams(const bus::Scenario& scenario, const vehicle
   p.link = magnetometer_bridge::defaultDevicePath(args);
   p.seed = scenario.seedFor(args.name);
   auto r = scenario.componentParams(args.name, problems);
+  vehicle::refuseMovedKeys(r, {{"q_body_sensor", "spacecraft.sensors.magnetometer.q_body_sensor"}});
   r.read("link", p.link);
   r.read("baud", p.baud);
   r.read("range_T", p.mounting.range_T, "T");

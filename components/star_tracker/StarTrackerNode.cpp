@@ -12,6 +12,7 @@ EmulatorParams<StarTrackerParams> readParams(const bus::Scenario& scenario, cons
       scenario, args.name, 3, "rad", problems, [&](bus::ParamReader& r, StarTrackerParams& m) {
         m.q_body_sensor = vehicle.truth.sensors.q_body_star_tracker;
         m.q_body_sensor_onboard = vehicle.onboard.sensors.q_body_star_tracker;
+        vehicle::refuseMovedKeys(r, {{"q_body_sensor", "spacecraft.sensors.star_tracker.q_body_sensor"}});
         r.read("noise_cross_rad", m.noise_cross_rad, "rad");
         r.read("noise_about_rad", m.noise_about_rad, "rad");
         r.read("max_rate_rad_s", m.max_rate_rad_s, "rad/s");

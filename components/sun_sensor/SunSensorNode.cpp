@@ -12,6 +12,7 @@ EmulatorParams<SunSensorParams> readParams(const bus::Scenario& scenario, const 
       scenario, args.name, 3, "-", problems, [&](bus::ParamReader& r, SunSensorParams& m) {
     m.boresight_B = vehicle.truth.sensors.sun_sensor_boresight_B;
     m.boresight_onboard_B = vehicle.onboard.sensors.sun_sensor_boresight_B;
+    vehicle::refuseMovedKeys(r, {{"boresight_body", "spacecraft.sensors.sun_sensor.boresight_body"}});
     r.read("noise_rad", m.noise_rad, "rad");
     r.read("fov_half_angle_rad", m.fov_half_angle_rad, "rad");
     r.read("min_illumination", m.min_illumination, "-");

@@ -264,6 +264,7 @@ UnloadingControllerNodeParams readParams(const bus::Scenario& scenario, const ve
   if (known.orbit.validate().empty()) p.spin.orbit_rate_rad_s = sim::KeplerOrbit(known.orbit).meanMotion_rad_s();
 
   auto r = scenario.componentParams(args.name, problems);
+  vehicle::refuseMovedKeys(r, vehicle::kMovedReferenceKeys);
   r.read("enabled", u.enabled);
   r.read("gain_per_s", u.gain_per_s, "1/s");
   r.read("h_target_body_Nms", u.h_target_B_Nms, "N m s");

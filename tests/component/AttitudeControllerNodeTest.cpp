@@ -7,13 +7,12 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
-#include <thread>
 
 #include "bus/Convert.hpp"
 #include "bus/TimeMaster.hpp"
 #include "components/attitude_controller/AttitudeControllerNode.hpp"
 #include "tests/support/FedByScript.hpp"
-#include "tests/support/TestDomain.hpp"
+#include "tests/support/NodeUnderTest.hpp"
 
 namespace {
 
@@ -54,7 +53,6 @@ class ScriptedPeers final : public bus::TimeMaster {
 
 TEST_CASE("attitude controller node turns the Sun offset into wheel torques, and stops on an invalid estimate",
           "[attitude_controller][component][dds]") {
-  const std::uint32_t domain = test::testDomain();
   attitude_controller::AttitudeControllerNodeParams params;
   auto& law = params.law;  // defaults: kp 0.02 N m/rad, kd 0.2 N m s/rad, 0.01 N m, 0.005 rad/s
   law.wheels.count = 3;    // along body x, y, z
@@ -63,17 +61,14 @@ TEST_CASE("attitude controller node turns the Sun offset into wheel torques, and
   const bus::Schedule node_view = {
       {"dynamics_server", 1}, {"attitude_controller", 1}, {"estimator", 1}, {"wheel_tach", 1}};
   const bus::Schedule master_view = {{"dynamics_server", 1}, {"attitude_controller", 1}};
-  bus::Bus script_bus({domain, bus::NetworkProfile::kLoopback, "script"});
-  bus::Bus node_bus({domain, bus::NetworkProfile::kLoopback, "attitude_controller"});
-  ScriptedPeers script(script_bus, {"dynamics_server", master_view});
+  test::NodeTestBuses buses("attitude_controller");
+  ScriptedPeers script(buses.script, {"dynamics_server", master_view});
   attitude_controller::AttitudeControllerNode node(
-      node_bus, test::fedByScript({"attitude_controller", node_view}), params);
+      buses.node, test::fedByScript({"attitude_controller", node_view}), params);
   CHECK(node.inputTopics() == std::vector<std::string>{std::string(bus::topics::kAttitudeEstimate.name),
                                                        std::string(bus::topics::kWheelTach.name)});
 
-  std::thread node_thread([&] { node.run(); });
-  script.run();
-  node_thread.join();
+  test::runTogether(script, node);
 
   REQUIRE(script.received.size() == kSteps);
   const double tau_Nm = law.kp_Nm_per_rad * kOffset_rad;  // about +z (x × s), no rate, no stored momentum

@@ -8,13 +8,12 @@
 // dropout on the field alone.
 #include <catch2/catch.hpp>
 
-#include <thread>
 
 #include "bus/Convert.hpp"
 #include "bus/TimeMaster.hpp"
 #include "components/estimator/EstimatorNode.hpp"
 #include "tests/support/FedByScript.hpp"
-#include "tests/support/TestDomain.hpp"
+#include "tests/support/NodeUnderTest.hpp"
 
 namespace {
 
@@ -66,7 +65,6 @@ class ScriptedPeers final : public bus::TimeMaster {
 
 TEST_CASE("estimator node acquires and holds the attitude its sensors agree on, and rides through a Sun dropout",
           "[estimator][component][dds]") {
-  const std::uint32_t domain = test::testDomain();
   estimator::EstimatorNodeParams params;  // Mahony; the onboard model: the default orbit and tilted dipole
   params.reference.orbit.inclination_rad = 1.0;
   params.filter.use_magnetometer = true;
@@ -74,17 +72,14 @@ TEST_CASE("estimator node acquires and holds the attitude its sensors agree on, 
   const bus::Schedule node_view = {{"dynamics_server", 1}, {"estimator", 1}, {"gyro", 1},
                                    {"sun_sensor", 1},      {"magnetometer", 1}};
   const bus::Schedule master_view = {{"dynamics_server", 1}, {"estimator", 1}};
-  bus::Bus script_bus({domain, bus::NetworkProfile::kLoopback, "script"});
-  bus::Bus node_bus({domain, bus::NetworkProfile::kLoopback, "estimator"});
-  ScriptedPeers script(script_bus, {"dynamics_server", master_view}, params.reference);
-  estimator::EstimatorNode node(node_bus, test::fedByScript({"estimator", node_view}), params);
+  test::NodeTestBuses buses("estimator");
+  ScriptedPeers script(buses.script, {"dynamics_server", master_view}, params.reference);
+  estimator::EstimatorNode node(buses.node, test::fedByScript({"estimator", node_view}), params);
   CHECK(node.inputTopics() == std::vector<std::string>{std::string(bus::topics::kGyro.name),
                                                        std::string(bus::topics::kSunSensor.name),
                                                        std::string(bus::topics::kMagnetometer.name)});
 
-  std::thread node_thread([&] { node.run(); });
-  script.run();
-  node_thread.join();
+  test::runTogether(script, node);
 
   REQUIRE(script.received.size() == kSteps);
   for (const auto& [k, estimate] : script.received) {

@@ -8,7 +8,6 @@
 #include <unistd.h>
 
 #include <filesystem>
-#include <thread>
 
 #include "bus/Convert.hpp"
 #include "bus/Recording.hpp"
@@ -17,7 +16,7 @@
 #include "bus/TimeMaster.hpp"
 #include "components/recorder/RecorderNode.hpp"
 #include "tests/support/FedByScript.hpp"
-#include "tests/support/TestDomain.hpp"
+#include "tests/support/NodeUnderTest.hpp"
 
 namespace {
 
@@ -52,20 +51,16 @@ class ScriptedPeers final : public bus::TimeMaster {
 
 /// Runs the script and a recorder storing every `every` steps into `path`.
 void recordRun(const std::string& path, std::uint32_t every) {
-  const std::uint32_t domain = test::testDomain();
   const bus::Schedule node_view = {{"dynamics_server", 1}, {"recorder", 1}, {"gyro", 1}};
   const bus::Schedule master_view = {{"dynamics_server", 1}, {"recorder", 1}};
-  bus::Bus script_bus({domain, bus::NetworkProfile::kLoopback, "script"});
-  bus::Bus node_bus({domain, bus::NetworkProfile::kLoopback, "recorder"});
-  ScriptedPeers script(script_bus, {"dynamics_server", master_view});
+  test::NodeTestBuses buses("recorder");
+  ScriptedPeers script(buses.script, {"dynamics_server", master_view});
   recorder::RecorderParams params;
   params.path = path;
   params.record_every_steps = every;
   params.meta = {{bus::meta::kSchedule, "dynamics_server=1,recorder=1,gyro=1"}};
-  auto node = std::make_unique<recorder::RecorderNode>(node_bus, test::fedByScript({"recorder", node_view}), params);
-  std::thread node_thread([&] { node->run(); });
-  script.run();
-  node_thread.join();
+  auto node = std::make_unique<recorder::RecorderNode>(buses.node, test::fedByScript({"recorder", node_view}), params);
+  test::runTogether(script, *node);
   node.reset();  // closes the recording
 }
 

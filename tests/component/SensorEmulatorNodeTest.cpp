@@ -7,7 +7,6 @@
 
 #include <cmath>
 #include <map>
-#include <thread>
 
 #include "bus/Convert.hpp"
 #include "bus/TimeMaster.hpp"
@@ -18,7 +17,7 @@
 #include "components/wheel_tach/WheelTachNode.hpp"
 #include "sim/PanelModel.hpp"
 #include "tests/support/FedByScript.hpp"
-#include "tests/support/TestDomain.hpp"
+#include "tests/support/NodeUnderTest.hpp"
 
 namespace {
 
@@ -64,15 +63,11 @@ class TruthScript final : public bus::TimeMaster {
 /// The readings of emulator `name` (a Node built with `params`), by step.
 template <class Node, const auto& Topic>
 auto emulate(const std::string& name, const typename Node::Params& params) {
-  const std::uint32_t domain = test::testDomain();
   const bus::Schedule view = {{"dynamics_server", 1}, {name, 1}};
-  bus::Bus script_bus({domain, bus::NetworkProfile::kLoopback, "script"});
-  bus::Bus node_bus({domain, bus::NetworkProfile::kLoopback, name});
-  TruthScript<Topic> script(script_bus, {"dynamics_server", view});
-  Node node(node_bus, test::fedByScript({name, view}), params);
-  std::thread node_thread([&] { node.run(); });
-  script.run();
-  node_thread.join();
+  test::NodeTestBuses buses(name);
+  TruthScript<Topic> script(buses.script, {"dynamics_server", view});
+  Node node(buses.node, test::fedByScript({name, view}), params);
+  test::runTogether(script, node);
   REQUIRE(script.received.size() == kSteps);
   return script.received;
 }

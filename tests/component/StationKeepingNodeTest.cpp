@@ -8,7 +8,6 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
-#include <thread>
 
 #include "bus/Convert.hpp"
 #include "bus/TimeMaster.hpp"
@@ -16,7 +15,7 @@
 #include "sim/Constants.hpp"
 #include "sim/Time.hpp"
 #include "tests/support/FedByScript.hpp"
-#include "tests/support/TestDomain.hpp"
+#include "tests/support/NodeUnderTest.hpp"
 
 namespace {
 
@@ -57,7 +56,6 @@ class GeostationaryScript final : public bus::TimeMaster {
 
 TEST_CASE("station-keeping node plans on the station's mean elements and flies the failed pair's row from its start",
           "[station_keeping][component][dds]") {
-  const std::uint32_t domain = test::testDomain();
   station_keeping::StationKeepingNodeParams params;
   params.planner.station_longitude_rad = kStationLongitude_rad;
   params.mean_elements.window_s = 3600.0;  // six steps
@@ -66,14 +64,11 @@ TEST_CASE("station-keeping node plans on the station's mean elements and flies t
   params.failures = {{station_keeping::GeoThruster::kNC, kFailure_ns, 0}};
 
   const bus::Schedule view = {{"dynamics_server", 1}, {"station_keeping", 1}};
-  bus::Bus script_bus({domain, bus::NetworkProfile::kLoopback, "script"});
-  bus::Bus node_bus({domain, bus::NetworkProfile::kLoopback, "station_keeping"});
-  GeostationaryScript script(script_bus, {"dynamics_server", view});
-  station_keeping::StationKeepingNode node(node_bus, test::fedByScript({"station_keeping", view}), params);
+  test::NodeTestBuses buses("station_keeping");
+  GeostationaryScript script(buses.script, {"dynamics_server", view});
+  station_keeping::StationKeepingNode node(buses.node, test::fedByScript({"station_keeping", view}), params);
 
-  std::thread node_thread([&] { node.run(); });
-  script.run();
-  node_thread.join();
+  test::runTogether(script, node);
 
   REQUIRE(script.received.size() == kSteps);
   std::uint32_t plans = 0;

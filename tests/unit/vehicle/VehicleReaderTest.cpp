@@ -102,6 +102,7 @@ TEST_CASE("onboard: makes model error a setting, item by item", "[vehicle]") {
   CHECK(v.onboard.orbit_track.propagator == sim::OrbitPropagation::kKepler);
   CHECK(v.onboard.orbit.mean_anomaly_rad == Approx(0.01 * M_PI / 180.0).epsilon(1e-15));
   CHECK(v.onboard.orbit.semi_major_axis_m == v.truth.orbit.semi_major_axis_m);
+  CHECK(v.onboard.orbit_track.forces.mass_kg == 2426.0);  // two-body, but still the spacecraft's mass
   CHECK(v.onboard.faults.empty());
   // Items the view leaves alone stay the truth's.
   CHECK(v.onboard.body.wheel_axes_B == v.truth.body.wheel_axes_B);
@@ -129,4 +130,16 @@ TEST_CASE("a vehicle's problems name the file and the key", "[vehicle]") {
   CHECK(anyContains(list, "onboard.wheels.axes_body: 2 axes for 4 wheels"));
   CHECK(anyContains(list, "onboard.field_model: 'igrf99' is not tilted_dipole, igrf14 or wmm2025"));
   CHECK(anyContains(list, "onboard.orbit.propagator: 'numerical' is neither truth nor kepler"));
+}
+
+TEST_CASE("a problem of the truth is reported once, at its own key, not again for the onboard view", "[vehicle]") {
+  const OverDefault over;
+  // Inertia breaking the triangle inequality (5 > 1 + 1).
+  const auto scenario = over.load("lopsided.yaml", "spacecraft:\n  inertia_kg_m2: [[1, 0, 0], [0, 1, 0], [0, 0, 5]]\n");
+  bus::ConfigProblems problems;
+  vehicle::readVehicle(scenario, problems);
+  INFO(problems.joined());
+  REQUIRE(problems.list().size() == 1);
+  CHECK(anyContains(problems.list(), "spacecraft"));
+  CHECK_FALSE(anyContains(problems.list(), "onboard"));
 }
