@@ -124,7 +124,13 @@ struct RogueAndReader {
   bus::ReaderOf<bus::topics::kFaultCmd> reader{reader_bus, bus::topics::kFaultCmd,
                                                [this](const msg::FaultCmd&) { ++taken; }};
   test::RogueWriter rogue{rogue_bus, bus::topics::kFaultCmd};
-  RogueAndReader() { REQUIRE(rogue.waitForReaders(1, std::chrono::seconds(10))); }
+  /// Matched both ways: a reader that has not yet matched the writer ignores
+  /// what it is sent, and on matching starts from the writer's oldest kept
+  /// sample, as if earlier ones had never been written.
+  RogueAndReader() {
+    REQUIRE(rogue.waitForReaders(1, std::chrono::seconds(10)));
+    REQUIRE(test::within(10, [this] { return reader.matchedWriters() >= 1; }));
+  }
 };
 
 /// Intraprocess delivery as the process has it.
