@@ -1,7 +1,12 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "components/Registry.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <numbers>
 #include <type_traits>
+
+#include <spdlog/fmt/fmt.h>
 
 #include "components/attitude_controller/AttitudeControllerNode.hpp"
 #include "components/dynamics_server/DynamicsServerNode.hpp"
@@ -114,6 +119,46 @@ const ComponentKind* findComponentKind(const std::string& name) {
     if (k.name == name) return &k;
   }
   return nullptr;
+}
+
+std::optional<thruster_sequencer::BrakingReach> angleOnlyBrakingReach(const bus::Scenario& scenario,
+                                                                      const vehicle::Vehicle& vehicle) {
+  if (!scenario.hasComponent("thruster_sequencer") || !scenario.hasComponent("dynamics_server")) return std::nullopt;
+  bus::ConfigProblems problems;
+  const auto sequencer =
+      thruster_sequencer::readParams(scenario, vehicle, {scenario.file, "thruster_sequencer", ""}, problems);
+  const auto server = dynamics_server::readParams(scenario, vehicle, {scenario.file, "dynamics_server", ""}, problems);
+  if (!problems.empty() || sequencer.mode != thruster_sequencer::ThrusterSequencerParams::Mode::kAngleOnly) {
+    return std::nullopt;
+  }
+  const auto& params = sequencer.angle_only;
+  const thruster_sequencer::AngleOnlySequencer law(params);
+  thruster_sequencer::BrakingDrift drift;
+  drift.pulse_delta_rate_rad_s = std::min(std::abs(law.pulseDeltaRate_rad_s(1)), std::abs(law.pulseDeltaRate_rad_s(-1)));
+  drift.drift_rate_rad_s = params.axis_B.dot(server.dynamics.w0_NB_B_rad_s);
+  drift.sample_period_s = std::max(scenario.componentStep_s("sun_sensor"), params.step_s);
+  drift.pulse_on_time_s = params.pulse_on_time_s;
+  // Pulses fall on command steps: a T2 between two steps acts as the later one.
+  auto cycle = params.cycle;
+  cycle.braking_interval_s = std::ceil(cycle.braking_interval_s / params.step_s - 1e-9) * params.step_s;
+  return thruster_sequencer::brakingReach(cycle, drift);
+}
+
+std::vector<std::string> scenarioCautions(const bus::Scenario& scenario) {
+  bus::ConfigProblems problems;
+  const vehicle::Vehicle vehicle = vehicle::readVehicle(scenario, problems);
+  std::vector<std::string> cautions;
+  if (!problems.empty()) return cautions;
+  if (const auto reach = angleOnlyBrakingReach(scenario, vehicle); reach && !reach->holds) {
+    constexpr double kDeg = 180.0 / std::numbers::pi;
+    cautions.push_back(fmt::format(
+        "{}: components.thruster_sequencer.braking_interval_s: seed S1's condition on T2 does not hold: "
+        "braking {} pulses from {:.4g} deg/s takes the angle {:.4g} deg past the target, beyond the nearer "
+        "limit {:.4g} deg away; braking_interval_s <= {:.4g} s would hold it",
+        scenario.file, reach->braking_pulses, reach->drift_rate_rad_s * kDeg, reach->travel_rad * kDeg,
+        reach->room_rad * kDeg, reach->longest_interval_s));
+  }
+  return cautions;
 }
 
 std::vector<std::string> checkScenario(const bus::Scenario& scenario, const std::string& out_dir) {

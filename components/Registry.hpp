@@ -2,10 +2,12 @@
 #pragma once
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "bus/NodeMain.hpp"
+#include "components/thruster_sequencer/AngleOnlyLimitCycle.hpp"
 #include "vehicle/VehicleDescription.hpp"
 
 namespace flatsat {
@@ -35,5 +37,17 @@ const ComponentKind* findComponentKind(const std::string& name);
 /// component's parameters, unknown component names, a missing time master or
 /// recorder, and what components need of each other. Empty when the rig can start.
 std::vector<std::string> checkScenario(const bus::Scenario& scenario, const std::string& out_dir);
+
+/// What a valid scenario may not do as its author meant, one line each with
+/// file and key (the seed S1 example's T2, which breaks the seed's own
+/// condition, is one): the run logs them as warnings and goes on.
+std::vector<std::string> scenarioCautions(const bus::Scenario& scenario);
+
+/// Seed S1's condition on T2 for this rig: the angle-only sequencer braking
+/// the initial drift about its axis (`initial.w_body_rad_s`), with the pulse
+/// its onboard thrusters and inertia give and the Sun sensor's sample period.
+/// Empty without a valid angle-only thruster_sequencer.
+std::optional<thruster_sequencer::BrakingReach> angleOnlyBrakingReach(const bus::Scenario& scenario,
+                                                                      const vehicle::Vehicle& vehicle);
 
 }  // namespace flatsat

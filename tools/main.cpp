@@ -240,6 +240,7 @@ int run(const RunOptions& o, nlohmann::ordered_json* summary_out = nullptr) {
     }
     const std::string resolved = rig::writeRunScenario(o.scenario, run_dir, overrides);
     if (!loadChecked(resolved, run_dir, scenario)) return kExitBadInput;
+    for (const auto& caution : scenarioCautions(scenario)) spdlog::warn("{}", caution);
   } catch (const std::exception& e) {
     std::cerr << "error: " << e.what() << "\n";
     return kExitBadInput;
@@ -684,6 +685,7 @@ int main(int argc, char** argv) {
   if (bench_cmd->parsed()) return bench(bench_scenario, bench_duration_s, bench_quick);
   bus::Scenario scenario;
   if (!loadChecked(check_file, "", scenario)) return kExitBadInput;
+  for (const auto& caution : scenarioCautions(scenario)) std::cout << "caution: " << caution << "\n";
   std::cout << check_file << ": ok (" << scenario.components.size() << " components)\n";
   return 0;
 }

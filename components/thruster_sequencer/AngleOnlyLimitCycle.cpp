@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "components/thruster_sequencer/AngleOnlyLimitCycle.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -26,6 +27,22 @@ std::vector<std::string> AngleOnlyLimitCycleParams::validate() const {
   require(errors, braking_interval_s < correction_interval_s, "braking_interval_s",
           "must be < correction_interval_s (T2 < T1)");
   return errors;
+}
+
+BrakingReach brakingReach(const AngleOnlyLimitCycleParams& cycle, const BrakingDrift& drift) {
+  const double dw = std::abs(drift.pulse_delta_rate_rad_s);
+  BrakingReach reach;
+  reach.drift_rate_rad_s = std::max(std::abs(drift.drift_rate_rad_s), dw);
+  reach.braking_pulses = static_cast<int>(std::ceil(reach.drift_rate_rad_s / dw - 1e-9));
+  double coasting = 0.0;  // [rad/s·s/T2] Σ (ω − kδω)⁺: the travel per second of T2
+  for (int k = 1; k < reach.braking_pulses; ++k) coasting += std::max(reach.drift_rate_rad_s - k * dw, 0.0);
+  const double fixed = reach.drift_rate_rad_s * drift.sample_period_s + reach.braking_pulses * dw * drift.pulse_on_time_s / 2.0;
+  reach.travel_rad = fixed + cycle.braking_interval_s * coasting;
+  reach.room_rad = std::min(cycle.upper_limit_rad - cycle.target_rad, cycle.target_rad - cycle.lower_limit_rad);
+  reach.longest_interval_s = coasting > 0.0 ? std::max((reach.room_rad - fixed) / coasting, 0.0)
+                                            : (fixed <= reach.room_rad ? cycle.correction_interval_s : 0.0);
+  reach.holds = reach.travel_rad <= reach.room_rad;
+  return reach;
 }
 
 AngleOnlyLimitCycle::AngleOnlyLimitCycle(const Params& params)

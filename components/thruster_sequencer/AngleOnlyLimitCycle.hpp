@@ -50,6 +50,34 @@ struct PulseTally {
   void add(const AngleOnlyLimitCycleOutput& out);
 };
 
+/// What the braking of a drift meets, for seed S1's condition on T2.
+struct BrakingDrift {
+  double pulse_delta_rate_rad_s = 0.0;  // [rad/s] δω, rate change of one pulse, > 0
+  double drift_rate_rad_s = 0.0;        // [rad/s] the drift a correction stops and returns, any sign
+  double sample_period_s = 0.1;         // [s] angle sample period: the zero cross is seen up to one late, > 0
+  double pulse_on_time_s = 0.1;         // [s] a pulse's on-time, over which its δω builds up, >= 0
+};
+
+/// Seed S1's condition on T2 (JP2773738B2, description of FIG. 4: T2 "is set sufficiently
+/// shorter than T1 so that the braking is completed within the limit range"), for one drift.
+/// A correction stops a drift ω and brings the angle back at about ω (the seed's premise:
+/// n = 2m pulses, m ≈ |ω|/δω); at the zero cross the m braking pulses, T2 apart, then take
+/// the angle past A1 by
+///   ω·Δt + T2·Σ_{k=1}^{m−1} (ω − kδω)⁺ + m·δω·t_on/2,
+/// the first term the zero cross seen one sample late, the last the pulses' finite on-time.
+/// The braking completes within the range when that is no more than the nearer limit's
+/// distance from A1 (the motion may head for either).
+struct BrakingReach {
+  double drift_rate_rad_s = 0.0;     // [rad/s] |ω| braked, at least δω
+  int braking_pulses = 0;            // [-] m
+  double travel_rad = 0.0;           // [rad] angle past A1 when the braking ends
+  double room_rad = 0.0;             // [rad] min(A3 − A1, A1 − A2)
+  double longest_interval_s = 0.0;   // [s] the largest T2 that holds (0: none, the sampling alone is too slow)
+  bool holds = false;                // travel_rad <= room_rad
+};
+
+BrakingReach brakingReach(const AngleOnlyLimitCycleParams& cycle, const BrakingDrift& drift);
+
 /// Attitude correction from the attitude angle alone (JP2773738B2, claims 1-4; flatsat spec
 /// algorithms.md S1). Outside the limit range [A2, A3] a pulse toward the target A1 fires
 /// every T1 until the angle is back inside; their number n is kept (claim 4's memory). At the

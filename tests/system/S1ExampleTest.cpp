@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 // Seed S1 over the bus: the worked example (δω = 0.1 deg/s, T1 = 10 s, T2 = 1 s, ±1 deg,
 // 1 deg/s) with the Sun sensor as the only input of the thruster sequencer; the recorded
-// pulse counts must follow the rule of algorithms.md S1 (claims 3-4 of JP2773738B2).
+// pulse counts must follow the rule of algorithms.md S1 (claims 3-4 of JP2773738B2); the
+// seed's condition on T2 is reported, broken by the example and met by s1_settling.yaml.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -22,12 +23,13 @@ namespace {
 
 using test::kFlatsat;
 const std::string kExample = std::string(FLATSAT_SCENARIO_DIR) + "/s1_example.yaml";
+const std::string kSettling = std::string(FLATSAT_SCENARIO_DIR) + "/s1_settling.yaml";
 
-nlohmann::json runExample(const std::string& tag, const std::string& extra) {
+nlohmann::json runExample(const std::string& tag, const std::string& extra, const std::string& scenario = kExample) {
   test::exportTestDomain();
   const fs::path out = fs::temp_directory_path() / ("flatsat-test-s1-" + tag + "-" + std::to_string(::getpid()));
   fs::remove_all(out);
-  const auto command = test::runCommand(kFlatsat + " run " + kExample + " -q --no-plots --out " + out.string() + " " + extra);
+  const auto command = test::runCommand(kFlatsat + " run " + scenario + " -q --no-plots --out " + out.string() + " " + extra);
   INFO(command.output);
   REQUIRE(command.exit_code == 0);
   nlohmann::json summary;
@@ -72,6 +74,44 @@ TEST_CASE("S1 worked example over the bus: n = 20 first, braking by the rule, se
   CHECK(std::abs(s["final_angle_deg"].get<double>()) < 1.0);
   CHECK(std::abs(s["final_rate_deg_s"].get<double>()) < 0.01);
   CHECK(s["settle_time_s"].get<double>() < s["sim_seconds"].get<double>());
+
+  // The example's own T2 breaks the seed's condition that braking ends inside the range:
+  // 10 pulses from 1 deg/s, T2 = 1 s, go 0.1 + 4.5 + 0.05 deg past the target (sample delay,
+  // T2·(0.9 + … + 0.1), on-time), and the first braking did leave the range.
+  CHECK_FALSE(s["t2_condition_holds"].get<bool>());
+  CHECK(s["t2_condition"]["braking_pulses"].get<int>() == 10);
+  CHECK(s["t2_condition"]["travel_deg"].get<double>() == Approx(4.65));
+  CHECK(s["t2_condition"]["longest_braking_interval_s"].get<double>() == Approx(0.85 / 4.5));
+  CHECK(s["brakings_left_range"].get<int>() >= 1);
+
+  // Said when the scenario loads, with what would hold it.
+  const auto check = test::runCommand(kFlatsat + " check " + kExample);
+  INFO(check.output);
+  CHECK(check.exit_code == 0);
+  CHECK(check.output.find("caution: " + kExample +
+                          ": components.thruster_sequencer.braking_interval_s: seed S1's condition on T2 does "
+                          "not hold: braking 10 pulses from 1 deg/s takes the angle 4.65 deg past the target, "
+                          "beyond the nearer limit 1 deg away; braking_interval_s <= 0.1889 s would hold it") !=
+        std::string::npos);
+}
+
+TEST_CASE("S1 with the nearest T2 that meets the seed's condition (s1_settling.yaml) settles in one cycle",
+          "[thruster_sequencer][system][s1]") {
+  const auto s = runExample("settling", "--composed", kSettling);
+  INFO(s.dump(2));
+  CHECK(s["t2_condition_holds"].get<bool>());
+  CHECK(s["t2_condition"]["travel_deg"].get<double>() == Approx(0.1 + 0.45 + 0.05));
+  // One correction (20 pulses, as in the example), one braking of ⌊20/2⌋ that stops the
+  // 1 deg/s it returned with, inside the range: 30 pulses, none after.
+  CHECK(s["correction_counts"] == nlohmann::json::array({20}));
+  CHECK(s["braking_counts"] == nlohmann::json::array({10}));
+  CHECK(s["total_pulses"].get<int>() == 30);
+  CHECK(s["brakings_left_range"].get<int>() == 0);
+  CHECK(std::abs(s["final_angle_deg"].get<double>()) < 1.0);
+  CHECK(std::abs(s["final_rate_deg_s"].get<double>()) < 0.01);
+  // Out at 1 s, nineteen T1 of 10 s until the 20th pulse, back in and braked within 3 s.
+  CHECK(s["settle_time_s"].get<double>() > 191.0);
+  CHECK(s["settle_time_s"].get<double>() < 195.0);
 }
 
 TEST_CASE("S1 over the bus from another start (--seed, --set angle and rate) follows the rule and settles",

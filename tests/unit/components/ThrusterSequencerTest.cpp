@@ -458,3 +458,82 @@ TEST_CASE("thruster momentum dumping restarted mid-dump goes on dumping with the
   CHECK(b.on_time_s.sum() > 0.0);
   CHECK(ThrusterMomentumDumping(p).step(speed, 3).on_time_s.sum() == 0.0);
 }
+
+TEST_CASE("S1: the condition on T2 for the worked example, in closed form", "[thruster_sequencer]") {
+  // m = 10 pulses brake 1 deg/s; 0.1 deg/s each. Travel past A1: the zero cross seen up to
+  // one 0.1 s sample late (0.1 deg), T2·(0.9 + 0.8 + … + 0.1) = 4.5 deg·T2/s, and ten pulses
+  // building up over 0.1 s each (10·0.1·0.1/2 = 0.05 deg).
+  BrakingDrift drift{0.1 * kDeg, 1.0 * kDeg, 0.1, 0.1};
+  const auto seed = brakingReach(workedExample(), drift);
+  CHECK(seed.braking_pulses == 10);
+  CHECK(seed.travel_rad / kDeg == Approx(0.1 + 4.5 + 0.05));
+  CHECK(seed.room_rad / kDeg == Approx(1.0));
+  CHECK(!seed.holds);
+  CHECK(seed.longest_interval_s == Approx((1.0 - 0.15) / 4.5));
+
+  auto short_t2 = workedExample();
+  short_t2.braking_interval_s = 0.1;
+  const auto settling = brakingReach(short_t2, drift);
+  CHECK(settling.travel_rad / kDeg == Approx(0.1 + 0.45 + 0.05));
+  CHECK(settling.holds);
+
+  // A drift slower than one pulse is braked by one: only the sample delay and its on-time.
+  drift.drift_rate_rad_s = -0.05 * kDeg;
+  const auto slow = brakingReach(workedExample(), drift);
+  CHECK(slow.braking_pulses == 1);
+  CHECK(slow.travel_rad / kDeg == Approx(0.1 * 0.1 + 0.1 * 0.1 / 2));
+  CHECK(slow.holds);
+}
+
+namespace {
+
+/// [deg] The farthest the angle gets from A1 during the first braking (first pulse to the
+/// last pulse's end), on a one-axis plant integrated at 1 ms: each pulse a constant
+/// acceleration δω/t_on over t_on; the law sampled every 0.1 s. Negative: no braking.
+double firstBrakingExcursion_deg(const AngleOnlyLimitCycleParams& params, double rate0_deg_s, double dw_deg_s,
+                                 double on_time_s) {
+  AngleOnlyLimitCycle cycle(params);
+  double angle = 0.0, rate = rate0_deg_s, accel = 0.0, burn_end = -1.0, farthest = -1.0;
+  bool braking = false;
+  const int per_sample = 100;
+  for (std::int64_t k = 0; k < 20'000'000; ++k) {
+    const double t = static_cast<double>(k) * 1e-3;
+    if (k % per_sample == 0) {
+      const auto out = cycle.step({angle * kDeg, true}, k * 1'000'000);
+      if (out.pulse != 0) {
+        accel = out.pulse * dw_deg_s / on_time_s;
+        burn_end = t + on_time_s;
+        braking = braking || out.braking;
+      }
+      if (braking && out.phase != LimitCyclePhase::kBraking && t >= burn_end) return farthest;
+    }
+    if (t >= burn_end) accel = 0.0;
+    rate += accel * 1e-3;
+    angle += rate * 1e-3;
+    if (braking) farthest = std::max(farthest, std::abs(angle - params.target_rad / kDeg));
+  }
+  return farthest;
+}
+
+}  // namespace
+
+TEST_CASE("S1: the condition on T2 bounds the first braking's travel on a finely integrated plant",
+          "[thruster_sequencer]") {
+  // Independent of the closed form: the limit cycle itself against a plant whose pulses take
+  // their on-time. The prediction is an upper bound (the zero cross seen a full sample late),
+  // loose by at most that sample's travel and the discretisation of a return near n = 2m.
+  for (const double t2 : {0.1, 0.2, 0.5, 1.0}) {
+    for (const double rate : {0.3, 0.5, 1.0, 1.5}) {
+      auto params = workedExample();
+      params.braking_interval_s = t2;
+      const double simulated = firstBrakingExcursion_deg(params, rate, 0.1, 0.1);
+      const auto reach = brakingReach(params, {0.1 * kDeg, rate * kDeg, 0.1, 0.1});
+      INFO("T2 " << t2 << " s, drift " << rate << " deg/s: predicted " << reach.travel_rad / kDeg
+                 << " deg, simulated " << simulated << " deg");
+      REQUIRE(simulated > 0.0);
+      CHECK(reach.travel_rad / kDeg >= simulated - 1e-6);
+      CHECK(reach.travel_rad / kDeg - simulated <= rate * 0.1 + 0.1 * t2 + 1e-6);
+      if (reach.holds) CHECK(simulated <= 1.0);
+    }
+  }
+}
