@@ -52,6 +52,9 @@ struct VehicleDescription {
   sim::UtcEpoch epoch;                  ///< scenario epoch (t = 0), UTC; UT1 taken equal to UTC
   sim::OrbitElements orbit;             ///< osculating elements at the epoch, inertial frame N = ECI
   sim::OrbitTrackParams orbit_track;    ///< Kepler or numerical (forces, mass, areas, step)
+  /// [rad] east of Greenwich, [−π, π]: the geostationary slot (orbit.station_longitude_deg),
+  /// where the satellite starts and station keeping holds it; none for other orbits.
+  std::optional<double> station_longitude_rad;
   FieldModel field;
   /// Density model of the panels' drag and the numerical orbit's drag; none: density_kg_m3.
   std::optional<sim::AtmosphereParams> atmosphere;

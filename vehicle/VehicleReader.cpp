@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -82,6 +83,29 @@ void readElements(bus::ParamReader& orbit, sim::OrbitElements& elements) {
   orbit.problems(elements.validate());
 }
 
+/// orbit.station_longitude_deg: a geostationary slot, the one key that places
+/// the satellite (a near-circular, near-equatorial orbit is over the Earth-fixed
+/// longitude Ω + ω + M − GMST, so M follows) and that station keeping holds.
+void readStation(bus::ParamReader& orbit, VehicleDescription& v) {
+  constexpr double kDegToRad = std::numbers::pi / 180.0;
+  double longitude_deg = 0.0;
+  orbit.read("station_longitude_deg", longitude_deg, "deg");
+  if (!orbit.has("station_longitude_deg")) return;
+  if (orbit.has("mean_anomaly_rad")) {
+    orbit.problem("station_longitude_deg", "give it or mean_anomaly_rad, not both: it sets the mean anomaly");
+  } else if (!(std::abs(longitude_deg) <= 180.0)) {
+    orbit.problem("station_longitude_deg", "outside [-180, 180] deg");
+  } else if (!(v.orbit.inclination_rad <= 1.0 * kDegToRad && v.orbit.eccentricity <= 0.01)) {
+    orbit.problem("station_longitude_deg", "a slot needs a near-geostationary orbit: inclination_rad <= 1 deg, "
+                                           "eccentricity <= 0.01");
+  } else {
+    v.station_longitude_rad = longitude_deg * kDegToRad;
+    const double m = *v.station_longitude_rad + sim::gmst_rad(sim::julianDate(v.epoch)) - v.orbit.raan_rad -
+                     v.orbit.arg_perigee_rad;
+    v.orbit.mean_anomaly_rad = m - 2.0 * std::numbers::pi * std::floor(m / (2.0 * std::numbers::pi));
+  }
+}
+
 void readOrbit(bus::ParamReader orbit, VehicleDescription& v) {
   std::string epoch = "2026-03-20T00:00:00Z";
   orbit.read("epoch_utc", epoch);
@@ -94,6 +118,7 @@ void readOrbit(bus::ParamReader orbit, VehicleDescription& v) {
     orbit.problem("", "give exactly one of altitude_m (circular) or semi_major_axis_m");
   }
   readElements(orbit, v.orbit);
+  readStation(orbit, v);
   readPropagator(orbit, v.orbit_track);
   orbit.finish();
 }

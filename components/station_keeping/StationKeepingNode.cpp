@@ -124,7 +124,12 @@ StationKeepingNodeParams readParams(const bus::Scenario& scenario, const vehicle
   p.step_s = scenario.componentStep_s(args.name);
   auto r = scenario.componentParams(args.name, problems);
   StationKeepingParams& k = p.planner;
-  r.read("station_longitude_rad", k.station_longitude_rad, "rad");
+  vehicle::refuseMovedKeys(r, {{"station_longitude_rad", "orbit.station_longitude_deg"}});
+  if (known.station_longitude_rad) {
+    k.station_longitude_rad = *known.station_longitude_rad;
+  } else {
+    r.problem("", "needs a slot to hold: orbit.station_longitude_deg");
+  }
   r.read("longitude_return_s", k.longitude_return_s, "s");
   r.read("drift_horizon_s", k.drift_horizon_s, "s");
   r.read("max_burn_s", k.max_burn_s, "s");

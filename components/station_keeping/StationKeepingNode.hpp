@@ -62,7 +62,7 @@ class StationKeepingNode final : public bus::Component {
   std::uint64_t plan_step_ = 0;
 };
 
-/// components.<name>: station_longitude_rad and the planner's keys, the
+/// The slot from orbit.station_longitude_deg (onboard view); components.<name>: the planner's keys, the
 /// thrusters' cant and slew (checked against spacecraft.thrusters, which must
 /// be the six of the seed in the order NW, NC, NE, SW, SC, SE), thrust and mass
 /// from spacecraft, the epoch from orbit.

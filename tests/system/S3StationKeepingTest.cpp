@@ -13,15 +13,18 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <set>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "tests/support/Csv.hpp"
+#include "tests/support/Rig.hpp"
 #include "tests/support/Run.hpp"
 #include "tests/support/TestDomain.hpp"
 #include "tests/support/TestUnits.hpp"
@@ -38,7 +41,8 @@ struct Row {
   int thruster;
   double ra_deg;
   bool sun_anti = false;
-  bool inclination = false;  // an i firing: the plan may move it off its node
+  bool inclination = false;  // at a node: the plan may turn it off the node (i)
+  bool dumps = false;        // momentum dumping (MD): the plan may split it in halves
 };
 
 enum class Season { kWinterSpring, kSummerAutumn, kSpringEclipse, kAutumnEclipse };
@@ -48,13 +52,13 @@ std::vector<Row> tableI(const std::string& state, Season season) {
   const bool winter_spring = season == Season::kWinterSpring || season == Season::kSpringEclipse;
   if (state == "nominal") {
     return {{20, 90, false, true}, {24, 90, false, true}, {26, 270, false, true}, {30, 270, false, true},
-            {22, 90, false, true}, {28, 270, false, true}};
+            {22, 90, false, true, true}, {28, 270, false, true, true}};
   }
   if (state == "22/28") {
-    if (winter_spring) return {{24, 90, false, true}, {26, 270, false, true}, {24, 0}, {26, 0}};
-    return {{20, 90, false, true}, {30, 270, false, true}, {20, 180}, {30, 180}};
+    if (winter_spring) return {{24, 90, false, true, true}, {26, 270, false, true, true}, {24, 0}, {26, 0}};
+    return {{20, 90, false, true, true}, {30, 270, false, true, true}, {20, 180}, {30, 180}};
   }
-  std::vector<Row> rows{{22, 90, false, true}, {28, 270, false, true}};
+  std::vector<Row> rows{{22, 90, false, true, true}, {28, 270, false, true, true}};
   const int north = state == "20/30" ? 24 : 20, south = state == "20/30" ? 26 : 30;
   const bool north_at_90_in_spring = state == "20/30";
   if (season == Season::kSpringEclipse || season == Season::kAutumnEclipse) {
@@ -124,42 +128,95 @@ FlownYear fly(const std::string& scenario, const std::string& extra) {
   return year;
 }
 
-/// Every recorded step with a thruster on: which, where and in which season,
-/// checked against Table I; how many of them in the shadow.
-int checkFirings(const FlownYear& year, const std::string& state, int at_least) {
-  int checked = 0, in_shadow = 0;
+/// One thruster's run of recorded steps with on-time.
+struct Firing {
+  int thruster = 0;
+  std::uint64_t first_step = 0, last_step = 0;
+  double first_ra = 0.0, last_ra = 0.0;  // [rad] the spacecraft's right ascension at those steps
+  double sun_ra = 0.0, sun_dec = 0.0;    // [rad] the Sun's at the first
+  int in_shadow = 0;                     // steps in the Earth's shadow, penumbra included
+  /// [rad] The arc's middle.
+  double centre() const { return first_ra + 0.5 * std::remainder(last_ra - first_ra, 2.0 * std::numbers::pi); }
+};
+
+/// The firings, from commands recorded every `interval` steps (the recorder's
+/// record_every_steps): a thruster on at two recorded steps that far apart
+/// fired throughout.
+std::vector<Firing> firingsOf(const FlownYear& year) {
+  std::uint64_t interval = std::numeric_limits<std::uint64_t>::max(), previous = 0;
+  for (const auto& command : year.commands) {
+    const auto step = static_cast<std::uint64_t>(number(command, "header.step [-]"));
+    if (step > previous) interval = std::min(interval, step - previous);
+    previous = step;
+  }
+  std::vector<Firing> done;
+  std::map<int, Firing> open;  // by thruster
   for (const auto& command : year.commands) {
     const auto step = static_cast<std::uint64_t>(number(command, "header.step [-]"));
     const auto truth = year.truth.find(step);
     if (truth == year.truth.end()) continue;
     const auto& t = truth->second;
     const double ra = std::atan2(number(t, "r_inertial_m[1] [m]"), number(t, "r_inertial_m[0] [m]"));
-    const double sun_ra = std::atan2(number(t, "sun_inertial_unit[1] [-]"), number(t, "sun_inertial_unit[0] [-]"));
-    const double sun_dec = std::asin(number(t, "sun_inertial_unit[2] [-]"));
     for (int i = 0; i < 6; ++i) {
       if (number(command, "on_time_s[" + std::to_string(i) + "] [s]") <= 0.0) continue;
       const int thruster = 20 + 2 * i;
-      ++checked;
-      in_shadow += number(t, "illumination [-]") < 1.0;
-      bool matched = false;
-      for (const Season season : seasonsOf(sun_ra, sun_dec)) {
-        for (const Row& row : tableI(state, season)) {
-          if (row.thruster != thruster) continue;
-          const double centre = row.sun_anti ? sun_ra + std::numbers::pi : row.ra_deg * kDeg;
-          // Half of the longest burn (4 h: 30°) either side of the centre, the
-          // i firings' shift (at most 30°), and a day of the Sun's motion; an
-          // MD firing's halves sit ±15° out, each at most half as long.
-          const double reach = (row.inclination ? 61.0 : 32.0) * kDeg;
-          matched = matched || std::abs(std::remainder(ra - centre, 2.0 * std::numbers::pi)) <= reach;
-        }
+      auto at = open.find(thruster);
+      if (at != open.end() && step - at->second.last_step > interval) {
+        done.push_back(at->second);
+        open.erase(at);
+        at = open.end();
       }
-      INFO(state << ": thruster " << thruster << " at RA " << ra / kDeg << " deg, Sun RA " << sun_ra / kDeg
-                 << " deg, dec " << sun_dec / kDeg << " deg (step " << step << ")");
-      CHECK(matched);
+      if (at == open.end()) {
+        Firing f{thruster, step, step, ra, ra};
+        f.sun_ra = std::atan2(number(t, "sun_inertial_unit[1] [-]"), number(t, "sun_inertial_unit[0] [-]"));
+        f.sun_dec = std::asin(number(t, "sun_inertial_unit[2] [-]"));
+        at = open.emplace(thruster, f).first;
+      }
+      at->second.last_step = step;
+      at->second.last_ra = ra;
+      at->second.in_shadow += number(t, "illumination [-]") < 1.0;
     }
   }
-  INFO(state << ": " << checked << " recorded thruster-steps");
-  CHECK(checked >= at_least);
+  for (const auto& [thruster, f] : open) done.push_back(f);
+  return done;
+}
+
+/// Every firing flown (read from the recording), checked against Table I: its
+/// arc's middle within the planner's documented reach of its row's right
+/// ascension: a node's firing turned up to max_ra_shift_rad (0.52 rad,
+/// 29.8°), a dumping one split in halves at ± dump_arc_rad (15°), others
+/// within 15°. Slack: a day of the Sun's motion for the Sun-fixed rows (the
+/// plan is made up to a day before it is flown) and the arc of one recorded
+/// interval (10 steps of 60 s: 2.5°) either end. Returns the steps fired in the
+/// shadow.
+int checkFirings(const FlownYear& year, const std::string& state, std::size_t at_least) {
+  constexpr double kSlack_deg = 1.0 + 2.5;
+  const auto reach_deg = [](const Row& row) { return row.inclination ? 29.8 + (row.dumps ? 15.0 : 0.0) : 15.0; };
+  const auto firings = firingsOf(year);
+  int in_shadow = 0;
+  double worst_node_deg = 0.0, worst_other_deg = 0.0;
+  for (const Firing& f : firings) {
+    in_shadow += f.in_shadow;
+    double margin_deg = -360.0, off_deg = 360.0;  // of the row it fits best
+    bool inclination = false;
+    for (const Season season : seasonsOf(f.sun_ra, f.sun_dec)) {
+      for (const Row& row : tableI(state, season)) {
+        if (row.thruster != f.thruster) continue;
+        const double centre = row.sun_anti ? f.sun_ra + std::numbers::pi : row.ra_deg * kDeg;
+        const double off = std::abs(std::remainder(f.centre() - centre, 2.0 * std::numbers::pi)) / kDeg;
+        const double margin = reach_deg(row) + kSlack_deg - off;
+        if (margin > margin_deg) std::tie(margin_deg, off_deg, inclination) = std::tuple(margin, off, row.inclination);
+      }
+    }
+    double& worst = inclination ? worst_node_deg : worst_other_deg;
+    worst = std::max(worst, off_deg);
+    INFO(state << ": thruster " << f.thruster << " fired steps " << f.first_step << "-" << f.last_step
+                << ", arc middle at RA " << f.centre() / kDeg << " deg, " << off_deg << " deg off its row");
+    CHECK(margin_deg >= 0.0);
+  }
+  WARN(state << ": " << firings.size() << " firings; farthest off their row: at the nodes " << worst_node_deg << " deg, elsewhere "
+              << worst_other_deg << " deg");
+  CHECK(firings.size() >= at_least);
   return in_shadow;
 }
 
@@ -187,14 +244,48 @@ TEST_CASE("S3 in the rig: a year at 75°E in each state holds the box, flying Ta
       const bool failed = state != "nominal" && (thruster.find(state.substr(0, 2)) != std::string::npos ||
                                                  thruster.find(state.substr(3, 2)) != std::string::npos);
       INFO(thruster);
-      if (failed) CHECK(count.get<int>() == 0);
+      if (failed) {
+        CHECK(count.get<int>() == 0);
+      } else {
+        CHECK(count.get<int>() > 0);
+      }
     }
-    CHECK(checkFirings(year, state, 1000) == 0);
+    CHECK(checkFirings(year, state, 900) == 0);
     // The wings' and the bus's solar pressure (about 1e-5 N m) stays in the
     // wheels only as long as a few days of it: the MD firings' gimbals take
     // it out, and no wheel comes near its limit.
     CHECK(s["wheel_saturation_events"].get<int>() == 0);
     CHECK(s["wheel_momentum_Nms_max"].get<double>() < 0.2 * s["wheel_capacity_Nms"].get<double>());
+  }
+}
+
+TEST_CASE("S3 in the rig at 19.2°E and 105°E: one key moves the satellite and its slot, the box as measured",
+          "[station_keeping][system][s3]") {
+  // orbit.station_longitude_deg places the satellite over the slot and is
+  // the slot station keeping holds. Pinned at 1.5× the measured year
+  // (docs/s3_station_keeping.md); at 105°E the box (±0.05°, 0.05°, 2e-4) holds,
+  // at 19.2°E the 24/26 failure leaves it by a little.
+  struct Case {
+    std::string scenario;
+    double longitude_deg, dev_deg, inclination_deg, eccentricity;
+    bool holds_box;
+  };
+  for (const Case& c : {Case{"geo_nominal.yaml", 105.0, 0.0158, 0.0134, 1.20e-4, true},
+                        Case{"geo_fail_24_26.yaml", 19.2, 0.0506, 0.0302, 1.70e-4, false}}) {
+    const auto out = test::freshDir("s3-slot");
+    const auto run = test::runScenario(std::string(FLATSAT_SCENARIO_DIR) + "/" + c.scenario, out,
+                                       "--composed --set orbit.station_longitude_deg=" + std::to_string(c.longitude_deg));
+    const auto& s = run.summary;
+    INFO(c.scenario << " at " << c.longitude_deg << "E: " << s.dump(2));
+    CHECK(s["longitude_dev_deg_max"].get<double>() < 1.5 * c.dev_deg);
+    CHECK(s["inclination_deg_max"].get<double>() < 1.5 * c.inclination_deg);
+    CHECK(s["eccentricity_max"].get<double>() < 1.5 * c.eccentricity);
+    if (c.holds_box) {
+      CHECK(s["longitude_dev_deg_max"].get<double>() < 0.05);
+      CHECK(s["inclination_deg_max"].get<double>() < 0.05);
+      CHECK(s["eccentricity_max"].get<double>() < 2e-4);
+    }
+    CHECK(s["wheel_saturation_events"].get<int>() == 0);
   }
 }
 
@@ -242,5 +333,5 @@ TEST_CASE("S3 in the rig: a thruster failing mid-run switches the plan to its pa
     CHECK(number(command, "on_time_s[2] [s]") == 0.0);  // NE(24)
     CHECK(number(command, "on_time_s[3] [s]") == 0.0);  // SW(26)
   }
-  CHECK(checkFirings(switched, "24/26", 100) == 0);
+  CHECK(checkFirings(switched, "24/26", 14) == 0);
 }

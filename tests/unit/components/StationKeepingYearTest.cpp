@@ -5,11 +5,12 @@
 // ascension. What is asked of the station box: longitude within
 // ±0.05°, inclination within 0.05°, eccentricity below 2e-4, in every state;
 // and no firing in the Earth's shadow. At 75°E (next to the stable point of
-// the J22 field) every state holds the box. At 19.2°E, where J22 pulls east
-// at 0.0016°/day², the nominal state holds it; with a pair failed the one
-// diagonal pair left for the drift must give about 1.6 m/s a year more east
-// than west, and each of its firings turns e as much as its drift is worth,
-// so the longitude there reaches 0.05–0.08° (docs/s3_station_keeping.md).
+// the J22 field) and at 105°E every state holds the box. At 19.2°E, where J22
+// pulls east at 0.0016°/day², the nominal and 22/28 states hold it; with the
+// 20/30 or 24/26 pair failed the one diagonal pair left for the drift must give
+// about 1.6 m/s a year more east than west, and each of its firings turns e as
+// much as its drift is worth, so the longitude there reaches 0.053° and 0.080°
+// (docs/s3_station_keeping.md).
 #include <cmath>
 #include <map>
 #include <numbers>
@@ -154,12 +155,42 @@ TEST_CASE("S3 over a year at 75°E: every state holds the station box and fires 
   }
 }
 
-TEST_CASE("S3 over a year at 19.2°E, J22 pulling east: the nominal state holds the station box", "[station_keeping][s3]") {
-  const YearResult r = flyYear(PairFailure::kNone, 19.2 * kDeg);
-  WARN("nominal at 19.2E: longitude " << r.longitude_dev_deg_max << " deg, i " << r.inclination_deg_max << " deg, e "
-                                      << r.eccentricity_max << ", dv " << r.dv_m_s << " m/s/yr");
-  CHECK(r.longitude_dev_deg_max < 0.05);
-  CHECK(r.inclination_deg_max < 0.05);
-  CHECK(r.eccentricity_max < 2e-4);
-  CHECK(r.in_shadow == 0);
+TEST_CASE("S3 over a year at 19.2°E and 105°E: every state, the box each holds", "[station_keeping][s3]") {
+  // Away from the stable point J22 drives the longitude (0.0016°/day² east at
+  // 19.2°E). Measured (the WARN lines print them) and pinned at 1.5×; where
+  // the state holds the station box (±0.05°, 0.05°, 2e-4) that is asked too.
+  // At 19.2°E the 20/30 and 24/26 failures do not: the one diagonal pair left
+  // for the drift must push about 1.6 m/s a year more east than west, and
+  // each such firing turns e as much as its drift is worth
+  // (docs/s3_station_keeping.md).
+  struct Measured {
+    double longitude_deg, inclination_deg, eccentricity;
+    bool holds_box;
+  };
+  const std::map<std::pair<double, PairFailure>, Measured> measured = {
+      {{19.2, PairFailure::kNone}, {0.0305, 0.0125, 3.9e-5, true}},
+      {{19.2, PairFailure::k22_28}, {0.0468, 0.0196, 1.12e-4, true}},
+      {{19.2, PairFailure::k20_30}, {0.0533, 0.0271, 8.3e-5, false}},
+      {{19.2, PairFailure::k24_26}, {0.0804, 0.0308, 9.3e-5, false}},
+      {{105.0, PairFailure::kNone}, {0.0192, 0.0129, 3.8e-5, true}},
+      {{105.0, PairFailure::k22_28}, {0.0319, 0.0203, 7.2e-5, true}},
+      {{105.0, PairFailure::k20_30}, {0.0338, 0.0176, 5.0e-5, true}},
+      {{105.0, PairFailure::k24_26}, {0.0290, 0.0172, 4.7e-5, true}}};
+  for (const auto& [where, m] : measured) {
+    const auto& [longitude_deg, failure] = where;
+    const YearResult r = flyYear(failure, longitude_deg * kDeg);
+    WARN(nameOf(failure) << " at " << longitude_deg << "E: longitude " << r.longitude_dev_deg_max << " deg, i "
+                         << r.inclination_deg_max << " deg, e " << r.eccentricity_max << ", dv " << r.dv_m_s
+                         << " m/s/yr");
+    CHECK(r.longitude_dev_deg_max < 1.5 * m.longitude_deg);
+    CHECK(r.inclination_deg_max < 1.5 * m.inclination_deg);
+    CHECK(r.eccentricity_max < 1.5 * m.eccentricity);
+    if (m.holds_box) {
+      CHECK(r.longitude_dev_deg_max < 0.05);
+      CHECK(r.inclination_deg_max < 0.05);
+      CHECK(r.eccentricity_max < 2e-4);
+    }
+    CHECK(r.in_shadow == 0);
+    for (const auto& [thruster, count] : r.firings) CHECK(available(static_cast<GeoThruster>(thruster), failure));
+  }
 }

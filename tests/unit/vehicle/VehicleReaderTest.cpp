@@ -143,3 +143,35 @@ TEST_CASE("a problem of the truth is reported once, at its own key, not again fo
   CHECK(anyContains(problems.list(), "spacecraft"));
   CHECK_FALSE(anyContains(problems.list(), "onboard"));
 }
+
+TEST_CASE("orbit.station_longitude_deg places a geostationary satellite over its slot", "[vehicle]") {
+  const OverDefault over;
+  const auto geo = [](const std::string& inclination, const std::string& more) {
+    return "orbit: {altitude_m: 35786 km, inclination_rad: " + inclination +
+           ", eccentricity: 0, raan_rad: 10 deg, arg_perigee_rad: 20 deg, epoch_utc: '1992-08-20T12:14:00Z', " + more +
+           "}\n";
+  };
+  bus::ConfigProblems problems;
+  const auto v =
+      vehicle::readVehicle(over.load("slot.yaml", geo("0", "mean_anomaly_rad: null, station_longitude_deg: -30")), problems);
+  INFO(problems.joined());
+  REQUIRE(problems.empty());
+  // Vallado, Fundamentals of Astrodynamics, Example 3-5: GMST = 152.578 787 886 deg at
+  // 1992 Aug 20 12:14 UT1; over -30 deg the right ascension Ω + ω + M is GMST − 30 deg.
+  REQUIRE(v.truth.station_longitude_rad);
+  CHECK(*v.truth.station_longitude_rad == Approx(-30.0 * M_PI / 180.0));
+  CHECK(v.truth.orbit.mean_anomaly_rad * 180.0 / M_PI == Approx(152.578787886 - 30.0 - 10.0 - 20.0).margin(1e-6));
+  CHECK(v.onboard.station_longitude_rad == v.truth.station_longitude_rad);
+
+  const auto problemsOf = [&](const std::string& name, const std::string& keys) {
+    bus::ConfigProblems found;
+    vehicle::readVehicle(over.load(name, keys), found);
+    return found.list();
+  };
+  CHECK(anyContains(problemsOf("both.yaml", geo("0", "mean_anomaly_rad: 1 deg, station_longitude_deg: 5")),
+                    "orbit.station_longitude_deg: give it or mean_anomaly_rad, not both"));
+  CHECK(anyContains(problemsOf("inclined.yaml", geo("3 deg", "mean_anomaly_rad: null, station_longitude_deg: 5")),
+                    "orbit.station_longitude_deg: a slot needs a near-geostationary orbit"));
+  CHECK(anyContains(problemsOf("outside.yaml", geo("0", "mean_anomaly_rad: null, station_longitude_deg: 200")),
+                    "orbit.station_longitude_deg: outside [-180, 180] deg"));
+}
