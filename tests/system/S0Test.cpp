@@ -29,18 +29,19 @@ TEST_CASE("S0 closed loop without a magnetometer keeps the momentum bounded over
   CHECK(s["roles"].size() == 8);
   CHECK_FALSE(s["roles"].contains("magnetometer"));
   CHECK(s["sim_seconds"].get<double>() >= 5 * 5700);
-  // The bound the default rig (with a magnetometer) is held to: 20 % of capacity.
-  CHECK(s["wheel_momentum_fraction_max"].get<double>() < 0.2);
-  CHECK(s["pointing_error_deg_max"].get<double>() < 0.5);
-  // One window every 600 s in sunlight: about 8 an orbit, every one solved.
-  CHECK(s["s0_windows_solved"].get<int>() >= 5 * 6);
+  // Measured (docs/s0_study.md): 11.2 % of capacity (the default rig with a
+  // magnetometer is held to 20 %), pointing 0.031° max, 35 windows solved of one
+  // every 600 s in sunlight, field error 4.86 % and α 3.07° RMS all along the
+  // run (the estimate the unloading law used, against the truth); pinned at 1.5×.
+  CHECK(s["wheel_momentum_fraction_max"].get<double>() < 1.5 * 0.112);
+  CHECK(s["pointing_error_deg_max"].get<double>() < 1.5 * 0.0315);
+  CHECK(s["s0_windows_solved"].get<int>() >= 35 / 1.5);
   CHECK(s["s0_windows_failed"].get<int>() == 0);
-  // The estimate the unloading law used, against the truth, all along the run.
-  CHECK(s["field_error_pct_rms"].get<double>() < 10.0);
-  CHECK(s["alpha_error_deg_rms"].get<double>() < 5.0);
+  CHECK(s["field_error_pct_rms"].get<double>() < 1.5 * 4.86);
+  CHECK(s["alpha_error_deg_rms"].get<double>() < 1.5 * 3.07);
 }
 
-TEST_CASE("S0 accuracy at the best setting: field under 5 %, roll under 2 deg",
+TEST_CASE("S0 accuracy at the best setting: field 1.17 %, roll 0.79 deg RMS, pinned at 1.5x",
           "[estimator][system][s0]") {
   // flatsat study s0's best row (docs/s0_study.md): 60 s windows, the whole x
   // coil, settle and quiet interval after the pulse; one orbit of the default
@@ -54,10 +55,12 @@ TEST_CASE("S0 accuracy at the best setting: field under 5 %, roll under 2 deg",
   double window = 0, dipole = 0, field_rms = 0, field_max = 0, alpha_rms = 0, alpha_max = 0;
   int cycles = 0, failed = 0;
   last >> form >> window >> dipole >> cycles >> failed >> field_rms >> field_max >> alpha_rms >> alpha_max;
-  CHECK(cycles >= 8);
+  CHECK(cycles >= 12);  // a window every 300 s in sunlight
   CHECK(failed == 0);
-  CHECK(field_rms < 5.0);
-  CHECK(alpha_rms < 2.0);
+  CHECK(field_rms < 1.5 * 1.169);
+  CHECK(field_max < 1.5 * 1.879);
+  CHECK(alpha_rms < 1.5 * 0.791);
+  CHECK(alpha_max < 1.5 * 1.683);
 }
 
 TEST_CASE("S0 takes the unloading pulse in progress as its window when the law drives along x",
@@ -88,13 +91,13 @@ TEST_CASE("S0 takes the unloading pulse in progress as its window when the law d
     across_x += off_x[id] > 1.0 ? 1 : 0;
   }
   INFO(law_pulse.size() << " windows, " << from_law << " on the law's pulse, " << across_x << " with a dipole off x");
-  CHECK(from_law >= 10);
+  CHECK(from_law >= 16 / 1.5);  // 16 measured
   CHECK(across_x == from_law);  // those pulses were the law's, not a ±Mx of the estimator's
   CHECK(s["s0_windows_failed"].get<int>() == 0);
   CHECK(s["s0_windows_solved"].get<int>() >= static_cast<int>(law_pulse.size()) - 1);
-  // The same bounds as the ±Mx closed loop above.
-  CHECK(s["wheel_momentum_fraction_max"].get<double>() < 0.2);
-  CHECK(s["field_error_pct_rms"].get<double>() < 10.0);
-  CHECK(s["alpha_error_deg_rms"].get<double>() < 5.0);
+  // Measured (docs/s0_study.md): 10.8 % of capacity, field 5.98 % and α 3.85° RMS; pinned at 1.5×.
+  CHECK(s["wheel_momentum_fraction_max"].get<double>() < 1.5 * 0.108);
+  CHECK(s["field_error_pct_rms"].get<double>() < 1.5 * 5.98);
+  CHECK(s["alpha_error_deg_rms"].get<double>() < 1.5 * 3.85);
   fs::remove_all(out);
 }
