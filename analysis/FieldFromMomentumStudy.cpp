@@ -8,8 +8,10 @@
 
 #include "bus/Scenario.hpp"
 #include "components/attitude_controller/AttitudeControllerNode.hpp"
+#include "components/estimator/EstimatorNode.hpp"
 #include "components/estimator/FieldFromMomentumEstimator.hpp"
 #include "components/gyro/GyroNode.hpp"
+#include "components/sun_sensor/SunSensorNode.hpp"
 #include "components/wheel_tach/WheelTachNode.hpp"
 #include "sim/DynamicsModel.hpp"
 #include "sim/Frames.hpp"
@@ -29,6 +31,8 @@ struct Setup {
   attitude_controller::SunPointingControllerParams controller;
   wheel_tach::WheelTachParams tach;
   gyro::GyroParams gyro;
+  sun_sensor::SunSensorParams sun_sensor;  // the Sun the estimator is given is sensed
+  onboard::ReferenceModelParams reference;  // the estimator's: the onboard view's orbit, field model, Sun
   double jd_epoch;
 };
 
@@ -84,6 +88,8 @@ Setup readSetup(const std::string& file) {
           attitude_controller::readParams(scenario, craft, {file, "attitude_controller", ""}, problems).law,
           wheel_tach::readParams(scenario, craft, {file, "wheel_tach", ""}, problems).model,
           gyro::readParams(scenario, {file, "gyro", ""}, problems).model,
+          sun_sensor::readParams(scenario, craft, {file, "sun_sensor", ""}, problems).model,
+          estimator::readParams(scenario, craft, {file, "estimator", ""}, problems).reference,
           sim::julianDate(server.dynamics.epoch)};
   if (!problems.empty()) throw std::runtime_error(problems.joined());
   // Start on the Sun with a roll of 30 deg: the study is about holding, not acquiring.
@@ -109,6 +115,8 @@ Result runCase(const Setup& s, const Case& c, const FieldFromMomentumStudyOption
   attitude_controller::SunPointingController controller(s.controller);
   wheel_tach::WheelTachModel tach(s.tach);
   gyro::GyroModel gyro(s.gyro);
+  sun_sensor::SunSensorModel sun_sensor(s.sun_sensor);
+  onboard::ReferenceModel reference(s.reference);
   estimator::FieldFromMomentumParams p;
   p.wheels = wheelGeometryOf(s.onboard.body);
   p.quiet_s = p.pulse_s = c.window_s;
@@ -143,10 +151,17 @@ Result runCase(const Setup& s, const Case& c, const FieldFromMomentumStudyOption
     in.tach_valid = true;
     in.w_B_rad_s = gyro.step({truth.w_NB_B_rad_s}, t).w_NB_B_rad_s;
     in.gyro_valid = true;
-    in.sun_B_unit = truth.sun_B_unit;
-    in.sun_valid = truth.illumination > 0.5;
-    in.R_SE_N = R_N_SE.transpose();
-    in.b_N_ref_T = truth.b_N_T;  // the field model at the known position (IGRF in the plant)
+    // What the rig's estimator is given: the sensed Sun, and the onboard view's
+    // field and Sun at its own orbit knowledge (by default the truth's models).
+    const auto sensed = sun_sensor.step({truth.sun_B_unit, truth.illumination,
+                                         truth.solar_flux_W_m2 / sim::kSolarFlux1Au_W_m2,
+                                         truth.q_NB.conjugate() * truth.r_N_m},
+                                        t);
+    const auto known = reference.step(t);
+    in.sun_B_unit = sensed.sun_B_unit;
+    in.sun_valid = sensed.valid;
+    in.R_SE_N = sim::R_N_SunEcliptic(known.sun_N_unit, julianTt(s, t)).transpose();
+    in.b_N_ref_T = known.b_N_T;
     if (window && window->second.t2_ns == t) {
       in.completed = window;
       window.reset();

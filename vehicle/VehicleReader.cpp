@@ -210,7 +210,7 @@ void readAtmosphere(const bus::Scenario& scenario, bus::ParamReader& environment
 /// Each item is checked only where the section gives it: the truth's own
 /// problems are reported once, at the truth's keys.
 void readOnboard(const bus::Scenario& scenario, bus::ParamReader onboard, const FieldFiles& files,
-                 VehicleDescription& v) {
+                 const std::string& truth_model, VehicleDescription& v) {
   onboard.read("inertia_kg_m2", v.body.J_B_kg_m2, "kg m^2");
   auto wheels = onboard.section("wheels");
   int count = v.body.wheel_count;
@@ -223,12 +223,23 @@ void readOnboard(const bus::Scenario& scenario, bus::ParamReader onboard, const 
   wheels.finish();
   if (onboard.has("inertia_kg_m2") || onboard.has("wheels")) onboard.problems(v.body.validate());
   if (onboard.has("sensors")) readSensorMountings(onboard.section("sensors"), v.sensors);
-  if (onboard.has("field_model")) {
-    std::string model;
+  if (onboard.has("field_model") || onboard.has("field_epoch_utc")) {
+    std::string model = truth_model;
     onboard.read("field_model", model);
+    // A table loaded then and never updated: its secular variation stops there.
+    sim::UtcEpoch coefficients_epoch = v.epoch;
+    std::string coefficients_date;
+    onboard.read("field_epoch_utc", coefficients_date);
+    if (!coefficients_date.empty()) {
+      try {
+        coefficients_epoch = sim::parseIso8601Utc(coefficients_date);
+      } catch (const std::invalid_argument& e) {
+        onboard.problem("field_epoch_utc", e.what());
+      }
+    }
     FieldFiles named_by_environment = files;
     named_by_environment.igrf_key = named_by_environment.wmm_key = "field_model";
-    loadField(scenario, onboard, "field_model", model, named_by_environment, v.epoch, v.field);
+    loadField(scenario, onboard, "field_model", model, named_by_environment, coefficients_epoch, v.field);
   }
   if (onboard.has("field_degree")) readDegree(onboard, v.field);
   if (onboard.has("orbit")) {
@@ -270,7 +281,7 @@ Vehicle readVehicle(const bus::Scenario& scenario, bus::ConfigProblems& problems
   environment.finish();
 
   vehicle.onboard = truth;
-  readOnboard(scenario, scenario.section("onboard", problems), files, vehicle.onboard);
+  readOnboard(scenario, scenario.section("onboard", problems), files, model, vehicle.onboard);
   // The sections report their problems at their keys; what only the whole
   // description shows is reported once they are clean.
   if (problems.list().size() == problems_before) {

@@ -175,3 +175,22 @@ TEST_CASE("orbit.station_longitude_deg places a geostationary satellite over its
   CHECK(anyContains(problemsOf("outside.yaml", geo("0", "mean_anomaly_rad: null, station_longitude_deg: 200")),
                     "orbit.station_longitude_deg: outside [-180, 180] deg"));
 }
+
+TEST_CASE("onboard.field_epoch_utc: the onboard coefficients as evaluated years before the run", "[vehicle]") {
+  const OverDefault over;
+  bus::ConfigProblems problems;
+  const auto v = vehicle::readVehicle(
+      over.load("old_table.yaml", "onboard: {field_epoch_utc: '2020-01-01T00:00:00Z', field_degree: 8}\n"), problems);
+  INFO(problems.joined());
+  REQUIRE(problems.empty());
+  // IGRF-14 g10: -29403.41 nT at 2020.0 (DGRF) (data/igrf/igrf14coeffs.txt), the truth's at the
+  // run's epoch as above; the degree the onboard view's own.
+  CHECK(v.onboard.field.harmonics.g_nT[1][0] == Approx(-29403.41).margin(0.01));
+  CHECK(v.truth.field.harmonics.g_nT[1][0] == Approx(-29350.0 + 12.6 * (1.0 + 78.0 / 365.0)).margin(0.01));
+  CHECK(v.onboard.field.degree == 8);
+  CHECK(v.truth.field.degree == 13);
+
+  bus::ConfigProblems bad;
+  vehicle::readVehicle(over.load("bad_date.yaml", "onboard: {field_epoch_utc: 'last spring'}\n"), bad);
+  CHECK(anyContains(bad.list(), "onboard.field_epoch_utc:"));
+}
