@@ -138,6 +138,13 @@ StationKeepingNodeParams readParams(const bus::Scenario& scenario, const vehicle
   r.read("box_longitude_rad", k.box_longitude_rad, "rad");
   r.read("box_inclination_rad", k.box_inclination_rad, "rad");
   r.read("box_eccentricity", k.box_eccentricity, "-");
+  std::string centre_pair = "independent";
+  r.read("centre_pair", centre_pair);
+  if (centre_pair == "equal") {
+    k.centre_pair_equal = true;
+  } else if (centre_pair != "independent") {
+    r.problem("centre_pair", "'" + centre_pair + "' is neither equal (the seed's) nor independent");
+  }
   r.read("cant_rad", k.thrusters.cant_rad, "rad");
   r.read("slew_rad", k.thrusters.slew_rad, "rad");
   r.read("mean_elements_window_s", p.mean_elements.window_s, "s");

@@ -127,9 +127,23 @@ StationKeepingPlan StationKeepingPlanner::step(const StationKeepingInputs& in) c
     // A radial firing's longitude jump changes the drift the return wants.
     return std::pair{e, scaled(e.i, e.e, e.drift_rad_s + e.longitude_rad / params_.longitude_return_s, params_)};
   };
-  std::vector<int> free;  // the firings the least squares sizes; the dump firings are given
+  // The sizes the least squares finds, each shared by a group of firings; the
+  // dump firings are given.
+  std::vector<std::vector<int>> sized;
+  const bool centre_pair_tied = params_.centre_pair_equal &&
+                                (in.failure == PairFailure::k20_30 || in.failure == PairFailure::k24_26);
   for (int j = 0; j < static_cast<int>(firings.size()); ++j) {
-    if (firings[j].job != Job::kMomentumDump) free.push_back(j);
+    if (firings[j].job == Job::kMomentumDump) continue;
+    const bool centre = firings[j].thruster == GeoThruster::kNC || firings[j].thruster == GeoThruster::kSC;
+    const auto pair = std::find_if(sized.begin(), sized.end(), [&](const std::vector<int>& group) {
+      const GeoThruster t = firings[group.front()].thruster;
+      return t == GeoThruster::kNC || t == GeoThruster::kSC;
+    });
+    if (centre_pair_tied && centre && pair != sized.end()) {
+      pair->push_back(j);
+    } else {
+      sized.push_back({j});
+    }
   }
   // The i firings move off 90°/270° by the shift that leaves the least
   // weighted error: the heading of −i alone is not it when the d/e firings
@@ -147,9 +161,11 @@ StationKeepingPlan StationKeepingPlanner::step(const StationKeepingInputs& in) c
     for (const auto& f : shifted) {
       if (f.job == Job::kMomentumDump) rest -= effectOf(f, in.dump_dv_m_s).second;
     }
-    Eigen::Matrix<double, 5, Eigen::Dynamic> B(5, free.size());
-    for (std::size_t k = 0; k < free.size(); ++k) {
-      B.col(static_cast<Eigen::Index>(k)) = effectOf(shifted[free[k]], 1.0).second;
+    Eigen::Matrix<double, 5, Eigen::Dynamic> B(5, sized.size());
+    for (std::size_t k = 0; k < sized.size(); ++k) {
+      Effect5 column = Effect5::Zero();
+      for (const int j : sized[k]) column += effectOf(shifted[j], 1.0).second;
+      B.col(static_cast<Eigen::Index>(k)) = column;
     }
     const Eigen::VectorXd sizes = nonNegativeLeastSquares(B, rest);
     const double residual = (B * sizes - rest).squaredNorm();
@@ -165,8 +181,10 @@ StationKeepingPlan StationKeepingPlanner::step(const StationKeepingInputs& in) c
   plan.e_after = in.mean.e;
   plan.drift_after_rad_s = in.mean.drift_rad_s;
   for (int j = 0; j < static_cast<int>(firings.size()); ++j) {
-    const auto at = std::find(free.begin(), free.end(), j);
-    const double dv = std::min(max_dv, at == free.end() ? in.dump_dv_m_s : x(at - free.begin()));
+    const auto at = std::find_if(sized.begin(), sized.end(), [j](const std::vector<int>& group) {
+      return std::find(group.begin(), group.end(), j) != group.end();
+    });
+    const double dv = std::min(max_dv, at == sized.end() ? in.dump_dv_m_s : x(at - sized.begin()));
     if (dv <= 0.0) continue;
     const ImpulseEffect e = effectOf(firings[j], dv).first;
     plan.i_after += e.i;

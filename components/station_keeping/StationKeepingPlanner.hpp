@@ -30,6 +30,13 @@ struct StationKeepingParams {
   /// longer holds the longitude tighter at the cost of i and e (in the
   /// outer-pair failures, where one firing carries drift, e and some i).
   double drift_horizon_s = 345600.0;
+  /// Failure modes 2 and 3 (20/30 or 24/26 failed): true, NC(22) and SC(28)
+  /// fire equally, as the seed has them, so that their radial parts cancel;
+  /// false (default), each sized on its own. Equal holds the box next to the
+  /// stable point (75°E) on 17 % less ΔV but leaves it where J22 drives the
+  /// longitude (105°E, 19.2°E), where each on its own holds it or comes nearest
+  /// (docs/s3_station_keeping.md).
+  bool centre_pair_equal = false;
 };
 
 /// Every problem with `params`, naming the field and its range; empty: valid.
