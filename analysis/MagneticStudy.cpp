@@ -46,7 +46,7 @@ MagneticCase runMagneticCase(bus::Scenario scenario, std::uint64_t seed) {
                     control.after_detumble == unloading_controller::MagneticMode::kSpinCapture;
   if (spin) {
     judge.spin_axis_B = control.spin.spin_axis_B;
-    judge.spin_rate_rad_s = control.spin.spin_rate_rad_s;
+    judge.spin_rate_rad_s = control.spin.restRate_rad_s();
   }
   MagneticMetrics metrics(judge);
   const std::uint32_t sensor_divider = dividerOf(scenario, "magnetometer");

@@ -34,7 +34,7 @@ void summarizeMagnetic(const bus::Scenario& scenario, const bus::Recording& reco
   judge.max_dipole_Am2 = control.unload.max_dipole_Am2;
   if (spin) {
     judge.spin_axis_B = control.spin.spin_axis_B;
-    judge.spin_rate_rad_s = control.spin.spin_rate_rad_s;
+    judge.spin_rate_rad_s = control.spin.restRate_rad_s();
   }
   MagneticMetrics metrics(judge);
   using TruthDef = std::remove_cvref_t<decltype(bus::topics::kTruth)>;

@@ -89,7 +89,8 @@ BdotOutput Bdot::step(const Input& in, std::int64_t t_ns) {
   if (!b_dot_B_T_s_) return out;
 
   out.b_dot_B_T_s = *b_dot_B_T_s_;
-  out.p_B_T_s = out.b_dot_B_T_s - b_mid_B_T.cross(params_.omega_ref_B_rad_s);
+  const Eigen::Vector3d& b_corrected_B_T = params_.correction_at_sample ? in.b_B_T : b_mid_B_T;
+  out.p_B_T_s = out.b_dot_B_T_s - b_corrected_B_T.cross(params_.omega_ref_B_rad_s);
   out.rate_error_rad_s = out.p_B_T_s.norm() / b_norm;
   const double deadband_T_s = b_norm * params_.deadband_rad_s;
   const Eigen::Vector3d& m0 = params_.max_dipole_Am2;

@@ -25,6 +25,9 @@ struct BdotParams {
   double deadband_rad_s = 0.0;  // [rad/s] coil i off while |P_i| < |B|·deadband, >= 0
   double max_sample_gap_s = 10.0;  // [s] a longer gap between usable samples restarts the difference, > 0
   double min_field_T = 1.0e-6;  // [T] |B| below this: sample unusable, > 0
+  /// [-] true: the correction B × ω_ref at the newest sample B_k, the seed's B_b
+  /// (CN109533396A [0012]); false: at the secant's midpoint (see step()).
+  bool correction_at_sample = false;
 
   /// Every violation as "field: reason"; empty when valid.
   std::vector<std::string> validate() const;

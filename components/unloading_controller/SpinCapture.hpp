@@ -37,15 +37,29 @@ namespace flatsat::unloading_controller {
 /// 5 orbits, and the field-turn model".
 enum class FieldTurn { kOrbitRate, kModel };
 
+/// Which law (`law`):
+///  - kCorrected: the combination above, with ω_s, κ and the field turn of `field_turn`.
+///  - kSeed: the seed as written, nothing added: Ḃ_k and Q = B_k × ω0 a ([0008],
+///    [0012]) combined as P = Ḃ_k − Q = Ḃ_k + ω0 a × B_k, the orbit-rate-compensated
+///    B-dot form (ω_ref = ω0 a), the correction at the sample B_k. With the field
+///    turning at Ω_f ≈ 2ω0 n its rest point is ω = Ω_f + ω0 a: three turns an orbit
+///    about n, the only spin the seed's law can ask for.
+enum class SpinLaw { kCorrected, kSeed };
+
 struct SpinCaptureParams {
   Eigen::Vector3d spin_axis_B = Eigen::Vector3d::UnitZ();  // [-] chosen body axis a, unit
   double spin_rate_rad_s = 0.035;                           // [rad/s] ω_s, inertial, about n, finite
   double orbit_rate_rad_s = 1.1e-3;                         // [rad/s] ω0 = 2π / period, > 0
   double field_turn_per_orbit_rate = 2.0;                   // [-] Ω_f / ω0 (2 for near-polar orbits), finite; kOrbitRate
   FieldTurn field_turn = FieldTurn::kOrbitRate;             // [-] where the field's own turn comes from
+  SpinLaw law = SpinLaw::kCorrected;                        // [-] the seed as written, or corrected
 
   /// Every violation as "field: reason"; empty when valid.
   std::vector<std::string> validate() const;
+
+  /// [rad/s] The inertial spin about the orbit normal the law comes to rest at: ω_s,
+  /// or for the seed's law 3ω0 (Ω_f + ω0 with the field's mean turn Ω_f = 2ω0).
+  double restRate_rad_s() const { return law == SpinLaw::kSeed ? 3.0 * orbit_rate_rad_s : spin_rate_rad_s; }
 };
 
 /// The bang-bang corrected B-dot above for coils of max_dipole_Am2 [A m²]; with

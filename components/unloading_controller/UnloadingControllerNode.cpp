@@ -297,6 +297,16 @@ UnloadingControllerNodeParams readParams(const bus::Scenario& scenario, const ve
   s.read("spin_axis_body", p.spin.spin_axis_B, "-");
   s.read("spin_rate_rad_s", p.spin.spin_rate_rad_s, "rad/s");
   s.read("field_turn_per_orbit_rate", p.spin.field_turn_per_orbit_rate, "-");
+  std::string law = "corrected";
+  s.read("law", law);
+  if (law == "seed") {
+    p.spin.law = SpinLaw::kSeed;
+    for (const char* key : {"spin_rate_rad_s", "field_turn_per_orbit_rate"}) {
+      if (s.has(key)) s.problem(key, "the seed's law (law: seed) has no requested spin rate and no field-turn factor");
+    }
+  } else if (law != "corrected") {
+    s.problem("law", "'" + law + "' is neither corrected nor seed");
+  }
   std::string field_turn = "orbit_rate";
   s.read("field_turn", field_turn);
   if (field_turn == "model") {

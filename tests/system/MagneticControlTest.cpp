@@ -4,7 +4,11 @@
 // 3 orbits; spin: within 5 deg and 5 % within 5 orbits).
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
 #include <filesystem>
+#include <limits>
 #include <fstream>
 #include <sstream>
 #include <vector>
@@ -37,9 +41,13 @@ nlohmann::json runScenario(const std::string& file, const std::string& tag, cons
   return summary;
 }
 
-/// The numeric rows of `flatsat study NAME --cases 50`'s table, each with `columns` values.
-std::vector<std::vector<double>> studyRows(const std::string& name, std::size_t columns) {
-  const auto command = test::runCommand(kFlatsat + " study " + name + " --cases 50");
+/// The numeric rows of `flatsat study NAME --cases 50 [--scenario FILE]`'s table, each
+/// with `columns` values; "never" and "inf" (not captured) read as infinity.
+std::vector<std::vector<double>> studyRows(const std::string& name, std::size_t columns,
+                                           const std::string& scenario = "") {
+  const auto command = test::runCommand(kFlatsat + " study " + name + " --cases 50" +
+                                        (scenario.empty() ? "" : " --scenario " + std::string(FLATSAT_SCENARIO_DIR) +
+                                                                     "/" + scenario));
   INFO(command.output);
   REQUIRE(command.exit_code == 0);
   std::vector<std::vector<double>> rows;
@@ -47,12 +55,28 @@ std::vector<std::vector<double>> studyRows(const std::string& name, std::size_t 
   for (std::string line; std::getline(lines, line);) {
     std::istringstream cells(line);
     std::vector<double> row;
-    std::string bar;
-    double value = 0;
-    while (cells >> bar && bar == "|" && cells >> value) row.push_back(value);
+    std::string bar, cell;
+    while (cells >> bar && bar == "|" && cells >> cell) {
+      if (cell == "never" || cell == "inf") {
+        row.push_back(std::numeric_limits<double>::infinity());
+        continue;
+      }
+      char* end = nullptr;
+      const double value = std::strtod(cell.c_str(), &end);
+      if (end == cell.c_str() || *end != '\0') break;
+      row.push_back(value);
+    }
     if (row.size() == columns) rows.push_back(row);
   }
   return rows;
+}
+
+/// The median of one column.
+double median(const std::vector<std::vector<double>>& rows, std::size_t column) {
+  std::vector<double> values;
+  for (const auto& row : rows) values.push_back(row[column]);
+  std::sort(values.begin(), values.end());
+  return values.empty() ? NAN : 0.5 * (values[(values.size() - 1) / 2] + values[values.size() / 2]);
 }
 
 }  // namespace
@@ -91,18 +115,44 @@ TEST_CASE("S4 spin capture holds body z within 5 deg of the orbit normal at 2 de
   CHECK(s["coil_duty"].get<double>() > 0.0);
 }
 
-TEST_CASE("S4 spin capture: all 50 seeded tumbles captured within 5 orbits", "[unloading_controller][system][bdot]") {
-  // `flatsat study spin` runs s4_spin.yaml's plant, magnetometer and controller
+TEST_CASE("S4 spin capture: the corrected law captures all 50 seeded tumbles, the seed's as written none",
+          "[unloading_controller][system][bdot]") {
+  // `flatsat study spin` runs the scenario's plant, magnetometer and controller
   // without DDS; each row is judged on the truth over the whole run.
-  const auto rows = studyRows("spin", 9);
-  for (const auto& row : rows) {
-    // | seed | handover | capture | [orbits] | axis | rate | axis, orbit 5 | rate, orbit 5 | duty |
-    INFO("seed " << row[0]);
-    CHECK(row[3] <= 5.0);
-    CHECK(row[6] < 5.0);  // worst over orbit 5
+  // | seed | handover | capture | [orbits] | axis | rate | axis, orbit 5 | rate, orbit 5 | duty |
+  // Measured (docs/magnetic_control.md, "The seed's law as written"), pinned at 1.5×.
+  const auto corrected = studyRows("spin", 9);
+  REQUIRE(corrected.size() == 50);
+  for (const auto& row : corrected) {
+    INFO("corrected, seed " << row[0]);
+    CHECK(row[3] <= 1.5 * 1.79);  // orbits from the handover to capture
+    CHECK(row[6] < 5.0);          // worst over orbit 5
     CHECK(row[7] < 5.0);
-    CHECK(row[4] < 5.0);
-    CHECK(row[5] < 5.0);
+    CHECK(row[4] < 1.5 * 2.67);   // axis [deg] at the end
+    CHECK(row[5] < 1.5 * 0.45);   // rate [%] at the end
   }
-  CHECK(rows.size() == 50);
+  CHECK(median(corrected, 4) < 1.5 * 0.87);
+  CHECK(median(corrected, 5) < 1.5 * 0.205);
+
+  // s4_spin_seed.yaml: the seed's P = Ḃ − B_k × ω0 a, nothing added, on the same plant
+  // and tumbles. It spins the body at about its rest rate 3ω0, but at 0.19 deg/s the
+  // bang-bang torque and gravity gradient leave the axis anywhere: no seed captured.
+  const auto seed = studyRows("spin", 9, "s4_spin_seed.yaml");
+  REQUIRE(seed.size() == 50);
+  for (const auto& row : seed) CHECK(std::isinf(row[2]));
+  CHECK(median(seed, 4) > 44.5 / 1.5);
+  CHECK(median(seed, 4) < 44.5 * 1.5);
+  CHECK(median(seed, 5) > 20.7 / 1.5);
+  CHECK(median(seed, 5) < 20.7 * 1.5);
+  CHECK(median(seed, 8) == Approx(median(corrected, 8)).epsilon(0.05));  // coils on ~97 % either way
+}
+
+TEST_CASE("S4 as written on the rig (s4_spin_seed.yaml): summary keys say it never captures",
+          "[unloading_controller][system][bdot]") {
+  const auto s = runScenario("s4_spin_seed.yaml", "s4seed", "--seed 3");
+  INFO(s.dump(2));
+  CHECK(s["time_to_capture_s"].is_null());
+  // The same as the study's row for seed 3: axis 62.9 deg, rate 7.8 % off 3ω0.
+  CHECK(s["spin_axis_error_deg"].get<double>() == Approx(62.93).epsilon(0.01));
+  CHECK(s["spin_rate_error_pct"].get<double>() == Approx(7.79).epsilon(0.01));
 }

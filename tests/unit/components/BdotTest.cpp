@@ -111,6 +111,29 @@ TEST_CASE("corrected B-dot sees no error on a body that turns at omega_ref", "[u
   CHECK(*seen.rate_error_rad_s == Approx(w_B.cross(b_N.normalized()).norm()).epsilon(1e-3));
 }
 
+TEST_CASE("S4 as written: P = (B_k − B_k−1)/Δt − B_k × ω0 a, the correction at the newest sample",
+          "[unloading_controller][bdot]") {
+  // The seed's law (CN109533396A [0008], [0012]): nothing added, the correction at B_k.
+  unloading_controller::SpinCaptureParams seed;
+  seed.law = unloading_controller::SpinLaw::kSeed;
+  seed.spin_axis_B = Eigen::Vector3d::UnitZ();
+  seed.orbit_rate_rad_s = 1.1e-3;
+  seed.spin_rate_rad_s = 0.035;  // not the seed's: ignored
+  const BdotParams p = unloading_controller::spinCaptureLaw(seed, Eigen::Vector3d::Constant(0.5));
+  CHECK(p.omega_ref_B_rad_s == Eigen::Vector3d(0.0, 0.0, 1.1e-3));
+  CHECK(p.correction_at_sample);
+  CHECK(seed.restRate_rad_s() == Approx(3.3e-3));
+  Bdot law(p);
+  const Eigen::Vector3d b0(20e-6, -5e-6, 30e-6), b1(21e-6, -4e-6, 29e-6);
+  law.step({b0, true}, 0);
+  const auto out = law.step({b1, true}, 2 * kSecond);
+  // Written out by hand: Ḃ = (1, 1, −1) µT / 2 s; B_k × ω0 a = (−4, −21, 0) µT · 1.1e-3 rad/s.
+  const Eigen::Vector3d expected = Eigen::Vector3d(0.5e-6, 0.5e-6, -0.5e-6) -
+                                   Eigen::Vector3d(-4e-6 * 1.1e-3, -21e-6 * 1.1e-3, 0.0);
+  CHECK(out.p_B_T_s.isApprox(expected, 1e-12));
+  CHECK(out.m_B_Am2 == Eigen::Vector3d(-0.5, -0.5, 0.5));
+}
+
 TEST_CASE("with the onboard field model, B-dot sees the body's own rate and not the field's turn", "[unloading_controller][bdot]") {
   // A field that turns (2e-3 rad/s about an axis 30 deg off the orbit normal n = z)
   // and swells, seen from a body spinning at ω_s about its z axis held on n:
