@@ -9,6 +9,7 @@
 #include "bus/Topics.hpp"
 #include "components/unloading_controller/UnloadingControllerNode.hpp"
 #include "sim/Atmosphere.hpp"
+#include "sim/Flaps.hpp"
 #include "vehicle/VehicleReader.hpp"
 
 namespace flatsat::analysis {
@@ -53,6 +54,8 @@ void summarizeAeroUnloading(const bus::Scenario& scenario, const bus::Recording&
   double aero = 0.0, along_B = 0.0, least = 0.0, drag = 0.0, drag_alone = 0.0, delivered = 0.0, plant_drag = 0.0;
   std::uint64_t commands = 0;
   std::uint64_t demands = 0;
+  double flap_error2 = 0.0;  // Σ (relative flap torque error)²
+  std::uint64_t flap_demands = 0;
   recording.forEach(std::string(bus::topics::kFlapCmd.name),
                     [&](std::uint64_t step, const std::string&, const std::vector<std::uint8_t>& bytes) {
                       const auto cmd = bus::deserialize<FlapDef>(bytes);
@@ -70,6 +73,19 @@ void summarizeAeroUnloading(const bus::Scenario& scenario, const bus::Recording&
                       least += std::abs(C.dot(B)) / std::hypot(B.x(), B.z());
                       const double K = cmd.flap_scale_Nm();
                       drag += K * unloading_controller::FlapInversion::dragShape(bus::vec4(cmd.theta_rad()));
+                      // The flaps' share the split asked for (eq. II), as delivered, against the
+                      // torque the commanded angles give by the seed's shapes: the inversion's error.
+                      const Eigen::Vector3d b_law = bus::vec3(cmd.b_body_T());  // the field the split used
+                      const double roll_yaw2 = b_law.x() * b_law.x() + b_law.z() * b_law.z();
+                      if (K > 0.0 && roll_yaw2 > 0.0) {
+                        const Eigen::Vector3d wanted = cmd.delivered() * Eigen::Vector3d(b_law.x(), 0.0, b_law.z()) *
+                                                       b_law.dot(C) / roll_yaw2;
+                        const Eigen::Vector2d c = sim::Flaps::normalisedTorques(bus::vec4(cmd.theta_rad()));
+                        if (wanted.norm() > 0.0) {
+                          flap_error2 += (K * Eigen::Vector3d(c.x(), 0.0, c.y()) - wanted).squaredNorm() / wanted.squaredNorm();
+                          ++flap_demands;
+                        }
+                      }
                       const auto other = flaps_alone.step({C, bus::vec3(cmd.b_body_T()), K}, 0);
                       drag_alone += K * unloading_controller::FlapInversion::dragShape(other.flaps.theta_rad);
                     });
@@ -79,6 +95,9 @@ void summarizeAeroUnloading(const bus::Scenario& scenario, const bus::Recording&
   summary["drag_ratio"] = drag_alone > 0 ? drag / drag_alone : 0.0;
   summary["flap_drag_N_mean"] = plant_drag / static_cast<double>(commands);
   summary["torque_delivered_mean"] = demands > 0 ? delivered / static_cast<double>(demands) : 0.0;
+  if (node.modes.aero->split == unloading_controller::AeroSplit::kMagneticAero && flap_demands > 0) {
+    summary["flap_torque_error_pct_rms"] = 100.0 * std::sqrt(flap_error2 / static_cast<double>(flap_demands));
+  }
 }
 
 }  // namespace flatsat::analysis

@@ -18,6 +18,10 @@ namespace flatsat::analysis {
 ///    have needed for the same demands, field and air: < 1 is less drag than flaps alone.
 ///  - flap_drag_N_mean: the plant's flap force against the air's velocity, mean over the run.
 ///  - torque_delivered_mean: mean share of the demand delivered (limits scale it down).
+///  - flap_torque_error_pct_rms (split magnetic_aero): the flaps' share of the demand
+///    (eq. II, on the field the law used, times the share delivered) against K·(c_ax, 0, c_az)
+///    of the commanded angles by the seed's shapes: the flap solver's own error, RMS over
+///    the steps with a demand.
 void summarizeAeroUnloading(const bus::Scenario& scenario, const bus::Recording& recording, nlohmann::ordered_json& summary);
 
 }  // namespace flatsat::analysis

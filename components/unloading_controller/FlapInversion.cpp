@@ -110,6 +110,16 @@ bool FlapInversion::solveExact(const Pattern& p, const Eigen::Vector2d& c, FlapS
     y = cax * seedSmallAngleSquares(yaw_pattern ? std::max(C2, 1.0) : std::min(C2, 1.0), c(1) < 0.0);
   }
   if (p.branch == FlapBranch::kYawPairSpread) y(1) *= 0.5;
+  if (params_.seed_closed_form) {
+    // The seed's angles as they are; beyond the angle limit the demand is out of reach
+    // (solve() then scales it down).
+    if (!(y.maxCoeff() <= y_max_) || !y.allFinite()) return false;
+    out.theta_rad = p.angles(y, roll_sign);
+    out.c_achieved = sim::Flaps::normalisedTorques(out.theta_rad);
+    out.branch = p.branch;
+    out.replaced = p.replaced;
+    return true;
+  }
   y = y.cwiseMin(y_max_);
 
   // Residual and Jacobian in y: every plate adds sign·g to c_ax and (−1)^i y^{3/2} to c_az.

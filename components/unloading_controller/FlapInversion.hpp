@@ -26,6 +26,9 @@ struct FlapInversionParams {
   /// shape sin θ cos θ |sin θ| falls while its drag |sin θ|³ still grows.
   double max_angle_rad = 0.9553166181245093;
   std::array<bool, 4> failed{};  // [-] plates θ1..θ4 stuck edge-on (neutral), replaced per the table
+  /// [-] true: the seed's closed forms (IV–IX, small-angle shapes) give the angles as they
+  /// are, without the Newton refinement: their torque is off by the small-angle error.
+  bool seed_closed_form = false;
 
   /// Every violation as "field: reason"; empty when valid.
   std::vector<std::string> validate() const;

@@ -99,6 +99,13 @@ void readAero(bus::ParamReader& r, const vehicle::VehicleDescription& known, Unl
     a.problem("split", "'" + split + "' is not magnetic_aero, flaps_only or drag_only");
   }
   a.read("max_angle_rad", p.flaps.max_angle_rad, "rad");
+  std::string solver = "exact";
+  a.read("flap_solver", solver);
+  if (solver == "seed") {
+    p.flaps.seed_closed_form = true;
+  } else if (solver != "exact") {
+    a.problem("flap_solver", "'" + solver + "' is neither exact nor seed (the closed forms IV-IX as they are)");
+  }
   a.read("drag_only_angle_rad", p.drag_only_angle_rad, "rad");
   int failed = 0;
   a.read("failed_flap", failed);

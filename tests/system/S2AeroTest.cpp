@@ -89,6 +89,24 @@ TEST_CASE("S2 at 400 km: coils and flaps meet the demanded torque, the flaps wit
   fs::remove_all(out);
 }
 
+TEST_CASE("S2 at 400 km: the seed's closed-form angles (rules IV-IX) beside the exact ones, over the same run",
+          "[unloading_controller][system][s2]") {
+  // flap_torque_error_pct_rms: the flaps' share of the demand (eq. II) against the torque
+  // the commanded angles give by the seed's own shapes. Exact: the Newton solution, to
+  // rounding. The seed's closed forms solve the small-angle shapes (√(1 − sin²θ) → 1):
+  // 2.21 % RMS measured (docs/magnetic_control.md), pinned at 1.5×.
+  const auto exact = test::runScenario(kScenario, test::freshDir("s2-exact"), "--composed");
+  const auto seed = test::runScenario(kScenario, test::freshDir("s2-seed"),
+                                      "--composed --set components.unloading_controller.aero.flap_solver=seed");
+  INFO(exact.summary.dump(2) << "\n" << seed.summary.dump(2));
+  CHECK(exact.summary["flap_torque_error_pct_rms"].get<double>() < 1e-6);
+  CHECK(seed.summary["flap_torque_error_pct_rms"].get<double>() > 2.21 / 1.5);
+  CHECK(seed.summary["flap_torque_error_pct_rms"].get<double>() < 2.21 * 1.5);
+  // The same unloading either way: the wheels hold what they held.
+  CHECK(seed.summary["wheel_momentum_Nms_max"].get<double>() ==
+        Approx(exact.summary["wheel_momentum_Nms_max"].get<double>()).epsilon(0.01));
+}
+
 TEST_CASE("S2 at 400 km: less flap drag than flaps alone, and the wheels full without unloading",
           "[unloading_controller][system][s2]") {
   const auto seed = test::runScenario(kScenario, test::freshDir("s2-seed"), "--composed").summary;

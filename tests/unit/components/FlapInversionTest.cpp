@@ -213,3 +213,28 @@ TEST_CASE("S2 flaps: a demand out of reach is scaled down along its direction to
   bad.max_angle_rad = 60.0 * kDeg;
   CHECK_THROWS_WITH(FlapInversion(bad), Catch::Contains("max_angle_rad"));
 }
+
+TEST_CASE("S2 flaps: the seed's closed forms as the solver, off by the small-angle error only",
+          "[unloading_controller][unit][s2]") {
+  FlapInversionParams exact_params;
+  FlapInversionParams seed_params;
+  seed_params.seed_closed_form = true;
+  const FlapInversion exact(exact_params);
+  const FlapInversion seed(seed_params);
+  for (const Eigen::Vector2d c : {Eigen::Vector2d(0.02, 0.004), Eigen::Vector2d(-0.01, 0.03), Eigen::Vector2d(0.05, -0.01)}) {
+    const FlapSolution e = exact.solve(c);
+    const FlapSolution s = seed.solve(c);
+    REQUIRE(e.branch != FlapBranch::kUnavailable);
+    REQUIRE(s.branch == e.branch);
+    CHECK((e.c_achieved - c).norm() < 1e-12);
+    // The seed's shapes drop √(1 − y), y = sin²θ: the torque it gets is short by about y/2.
+    const double y = std::pow(std::sin(s.theta_rad.cwiseAbs().maxCoeff()), 2);
+    const double error = (s.c_achieved - c).norm() / c.norm();
+    INFO("c " << c.transpose() << ": closed form off by " << error << ", y " << y);
+    CHECK(error > 0.0);
+    CHECK(error < y);
+    // A demand ten times smaller: smaller angles, smaller error.
+    const FlapSolution small = seed.solve(0.1 * c);
+    CHECK((small.c_achieved - 0.1 * c).norm() / (0.1 * c.norm()) < error);
+  }
+}
