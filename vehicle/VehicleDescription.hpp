@@ -16,6 +16,7 @@
 #include "sim/Flaps.hpp"
 #include "sim/GeomagneticCoefficients.hpp"
 #include "sim/GeomagneticField.hpp"
+#include "sim/SpotFieldModel.hpp"
 #include "sim/KeplerOrbit.hpp"
 #include "sim/OrbitTrack.hpp"
 #include "sim/PanelModel.hpp"
@@ -42,6 +43,9 @@ struct FieldModel {
   sim::DipoleCoefficients dipole;     ///< [nT] degree-1 coefficients at the epoch's year (always loaded)
   sim::GaussCoefficients harmonics;   ///< [nT] spherical_harmonics: IGRF-14 or WMM2025 at the epoch's decimal year
   int degree = sim::GaussCoefficients::kMaxDegree;  ///< [-] spherical_harmonics: highest degree used, 1..13
+  /// Onboard only (`onboard.field_model: spot`): seed S2's first-harmonic field along the
+  /// orbit (claim 5), B0 from the dipole's g10; it replaces the models above.
+  std::optional<sim::SpotFieldModel> spot;
 
   std::vector<std::string> validate() const;
 };

@@ -131,13 +131,15 @@ struct FieldFiles {
   std::string wmm_key = "wmm_file";
 };
 
-/// `model` (tilted_dipole, igrf14, wmm2025) at the epoch's decimal year into
+/// `model` (tilted_dipole, igrf14, wmm2025; onboard also spot) at the epoch's decimal year into
 /// `field`; problems go to `reader`, an unknown model at `model_key`. The
 /// tilted dipole's coefficients always come from the IGRF file.
 void loadField(const bus::Scenario& scenario, bus::ParamReader& reader, const std::string& model_key,
-               const std::string& model, const FieldFiles& files, const sim::UtcEpoch& epoch, FieldModel& field) {
+               const std::string& model, const FieldFiles& files, const sim::UtcEpoch& epoch, bool onboard,
+               FieldModel& field) {
   const double year = sim::decimalYear(epoch);
   field.spherical_harmonics = false;
+  field.spot.reset();
   const auto load = [&](const std::string& key, const std::string& file, auto loader) {
     try {
       field.harmonics = loader(findDataFile(scenario, file), year);
@@ -157,8 +159,13 @@ void loadField(const bus::Scenario& scenario, bus::ParamReader& reader, const st
     if (igrf_read) load(files.igrf_key, files.igrf, sim::igrf14Coefficients);
   } else if (model == "wmm2025") {
     load(files.wmm_key, files.wmm, sim::wmm2025Coefficients);
-  } else if (model != "tilted_dipole") {
-    reader.problem(model_key, "'" + model + "' is not tilted_dipole, igrf14 or wmm2025");
+  } else if (model == "spot" && onboard && igrf_read) {
+    // Seed S2 claim 5: Bx = −B0 cos u, Bz = −2 B0 sin u in its orbit frame (polar orbit).
+    field.spot = sim::SpotFieldModel::firstHarmonic(-field.dipole.g10_nT * 1e-9, sim::kIgrfReferenceRadius_m);
+  } else if (model == "spot" && !onboard) {
+    reader.problem(model_key, "spot is a model flight software carries (onboard.field_model), not a plant's");
+  } else if (model != "tilted_dipole" && model != "spot") {
+    reader.problem(model_key, "'" + model + "' is not tilted_dipole, igrf14, wmm2025 or (onboard) spot");
   }
 }
 
@@ -239,7 +246,7 @@ void readOnboard(const bus::Scenario& scenario, bus::ParamReader onboard, const 
     }
     FieldFiles named_by_environment = files;
     named_by_environment.igrf_key = named_by_environment.wmm_key = "field_model";
-    loadField(scenario, onboard, "field_model", model, named_by_environment, coefficients_epoch, v.field);
+    loadField(scenario, onboard, "field_model", model, named_by_environment, coefficients_epoch, true, v.field);
   }
   if (onboard.has("field_degree")) readDegree(onboard, v.field);
   if (onboard.has("orbit")) {
@@ -274,7 +281,7 @@ Vehicle readVehicle(const bus::Scenario& scenario, bus::ConfigProblems& problems
   environment.read("field_model", model);
   environment.read("igrf_file", files.igrf);
   environment.read("wmm_file", files.wmm);
-  loadField(scenario, environment, "field_model", model, files, truth.epoch, truth.field);
+  loadField(scenario, environment, "field_model", model, files, truth.epoch, false, truth.field);
   readDegree(environment, truth.field);
   readAtmosphere(scenario, environment, truth);
   environment.leave({"gravity_gradient", "disturbance_torque_body_Nm"});  // the dynamics server's

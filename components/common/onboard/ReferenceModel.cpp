@@ -23,8 +23,12 @@ std::vector<std::string> ReferenceModelParams::validate() const {
 }
 
 ReferenceModelParams referenceModelOf(const vehicle::VehicleDescription& onboard, double field_node_s) {
-  ReferenceModelParams p{onboard.epoch, onboard.orbit, onboard.orbit_track, onboard.field.dipole, std::nullopt,
-                         field_node_s};
+  ReferenceModelParams p;
+  p.epoch = onboard.epoch;
+  p.orbit = onboard.orbit;
+  p.orbit_track = onboard.orbit_track;
+  p.field = onboard.field.dipole;
+  p.field_node_s = field_node_s;
   // A numerical propagator's drag uses the density model the onboard view carries.
   if (onboard.atmosphere) p.orbit_track.forces.atmosphere = *onboard.atmosphere;
   if (onboard.field.spherical_harmonics) {
@@ -32,6 +36,7 @@ ReferenceModelParams referenceModelOf(const vehicle::VehicleDescription& onboard
     harmonics.degree = std::min(harmonics.degree, onboard.field.degree);
     p.field_harmonics = harmonics;
   }
+  p.field_spot = onboard.field.spot;
   return p;
 }
 
@@ -43,7 +48,11 @@ ReferenceModel::ReferenceModel(const Params& params)
   if (params.field_harmonics) harmonics_.emplace(*params.field_harmonics);
 }
 
-Eigen::Vector3d ReferenceModel::fieldAt(const Eigen::Vector3d& r_N_m, double jd) const {
+Eigen::Vector3d ReferenceModel::fieldAt(const Eigen::Vector3d& r_N_m, const Eigen::Vector3d& v_N_m_s, double jd) const {
+  if (params_.field_spot) {
+    return sim::R_NO(r_N_m, v_N_m_s) *
+           params_.field_spot->b_O_T(sim::argumentOfLatitude_rad(r_N_m, v_N_m_s), r_N_m.norm());
+  }
   const Eigen::Matrix3d R_EN = sim::R_EN(jd);
   const Eigen::Vector3d r_E = R_EN * r_N_m;
   return R_EN.transpose() * (harmonics_ ? harmonics_->b_E_T(r_E) : field_.b_E_T(r_E));
@@ -60,7 +69,8 @@ bool ReferenceModel::takeNodes(double t_s) {
   if (nodes_ == 0 || node_[2].index != j) {
     // t_j <= t_s, and after every earlier call's time: the orbit is still asked in order.
     const double t_j = static_cast<double>(j) * h;
-    const Node node{j, fieldAt(orbit_.at(t_j).r_N_m, jd_epoch_ + t_j / 86400.0), sunAt(t_j)};
+    const auto state = orbit_.at(t_j);
+    const Node node{j, fieldAt(state.r_N_m, state.v_N_m_s, jd_epoch_ + t_j / 86400.0), sunAt(t_j)};
     node_ = {node_[1], node_[2], node};
     nodes_ = std::min(nodes_ + 1, 3);
   }
@@ -80,7 +90,7 @@ ReferenceVectors ReferenceModel::step(std::int64_t t_ns) {
   const auto state = orbit_.at(t_s);
   const Eigen::Vector3d& r_N = state.r_N_m;
   ReferenceVectors out;
-  out.b_N_T = from_nodes ? extrapolated(t_s, &Node::b_N_T) : fieldAt(r_N, jd_epoch_ + t_s / 86400.0);
+  out.b_N_T = from_nodes ? extrapolated(t_s, &Node::b_N_T) : fieldAt(r_N, state.v_N_m_s, jd_epoch_ + t_s / 86400.0);
   out.orbit_normal_N_unit = r_N.cross(state.v_N_m_s).normalized();
   out.r_N_m = r_N;
   out.v_N_m_s = state.v_N_m_s;

@@ -13,6 +13,7 @@
 #include "sim/KeplerOrbit.hpp"
 #include "sim/OrbitTrack.hpp"
 #include "sim/SphericalHarmonicField.hpp"
+#include "sim/SpotFieldModel.hpp"
 #include "sim/Time.hpp"
 #include "vehicle/VehicleDescription.hpp"
 
@@ -29,6 +30,9 @@ struct ReferenceModelParams {
   /// [nT] when set, the onboard field model is this spherical-harmonic model (IGRF, WMM)
   /// instead of the dipole: seed S0 needs the field's direction to better than a degree.
   std::optional<sim::GaussCoefficients> field_harmonics;
+  /// When set, the onboard field is seed S2's orbit-harmonic SPOT model (claim 5): a
+  /// function of the argument of latitude in the orbit frame, no Earth rotation.
+  std::optional<sim::SpotFieldModel> field_spot;
   /// [s] the field model and the Sun ephemeris are evaluated at t = j·field_node_s
   /// only and extrapolated in between from the newest three (0..10; 0: at every
   /// step). See ReferenceModel.
@@ -74,8 +78,9 @@ class ReferenceModel {
     Eigen::Vector3d b_N_T;      // [T] field at the onboard position
     Eigen::Vector3d r_sun_N_m;  // [m] the Sun from the Earth's centre
   };
-  /// [T] The model's field at r_N_m [m] (inertial), at the Julian date jd (UTC ≈ UT1).
-  Eigen::Vector3d fieldAt(const Eigen::Vector3d& r_N_m, double jd) const;
+  /// [T] The model's field at r_N_m [m] moving at v_N_m_s [m/s] (inertial), at the Julian
+  /// date jd (UTC ≈ UT1).
+  Eigen::Vector3d fieldAt(const Eigen::Vector3d& r_N_m, const Eigen::Vector3d& v_N_m_s, double jd) const;
   /// [m] The Sun's position (inertial, from the Earth's centre) at t_s [s] after the epoch.
   Eigen::Vector3d sunAt(double t_s) const;
   /// Adds the node of t_s's interval when it is new; whether the three newest

@@ -128,7 +128,7 @@ TEST_CASE("a vehicle's problems name the file and the key", "[vehicle]") {
   CHECK(anyContains(list, "spacecraft.sensors.sun_sensor.boresight: unknown key"));
   CHECK(anyContains(list, "spacecraft.faults[0]"));
   CHECK(anyContains(list, "onboard.wheels.axes_body: 2 axes for 4 wheels"));
-  CHECK(anyContains(list, "onboard.field_model: 'igrf99' is not tilted_dipole, igrf14 or wmm2025"));
+  CHECK(anyContains(list, "onboard.field_model: 'igrf99' is not tilted_dipole, igrf14, wmm2025 or (onboard) spot"));
   CHECK(anyContains(list, "onboard.orbit.propagator: 'numerical' is neither truth nor kepler"));
 }
 
