@@ -96,3 +96,22 @@ TEST_CASE("A node spacing outside 0..10 s is refused", "[common][estimator][refe
   CHECK_THROWS_WITH(ReferenceModel(params(11.0)), Catch::Contains("field_node_s"));
   CHECK_THROWS_WITH(ReferenceModel(params(-1.0)), Catch::Contains("field_node_s"));
 }
+
+TEST_CASE("With SPOT's first harmonic onboard, the field is the seed's, turned from its orbit frame",
+          "[common][estimator][reference]") {
+  // Seed S2 claim 5 on a polar orbit: Bx = −B0 cos u, By = 0, Bz = −2 B0 sin u in the
+  // orbit frame (X opposite to the motion, Z up). At the ascending node (u = 0) that is
+  // B0 along the motion; a quarter orbit on, −2 B0 along the radius (down) — the dipole's
+  // field over the pole, twice as strong as at the equator.
+  auto p = params(0.0);
+  p.orbit.inclination_rad = 90.0 * kDeg;
+  const double b0 = 29000e-9, r0 = flatsat::sim::kIgrfReferenceRadius_m;
+  p.field_spot = flatsat::sim::SpotFieldModel::firstHarmonic(b0, r0);
+  ReferenceModel model(p);
+  const ReferenceVectors at_node = model.step(0);
+  const double scale = std::pow(r0 / at_node.r_N_m.norm(), 3);
+  CHECK((at_node.b_N_T - b0 * scale * at_node.v_N_m_s.normalized()).norm() < 1e-6 * b0);
+  const double quarter_s = 0.25 * 2.0 * M_PI * std::sqrt(std::pow(p.orbit.semi_major_axis_m, 3) / flatsat::sim::kMuEarth_m3_s2);
+  const ReferenceVectors over_pole = model.step(ns(quarter_s));
+  CHECK((over_pole.b_N_T + 2.0 * b0 * scale * over_pole.r_N_m.normalized()).norm() < 1e-6 * b0);
+}
