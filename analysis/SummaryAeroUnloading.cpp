@@ -77,7 +77,8 @@ void summarizeAeroUnloading(const bus::Scenario& scenario, const bus::Recording&
                       // torque the commanded angles give by the seed's shapes: the inversion's error.
                       const Eigen::Vector3d b_law = bus::vec3(cmd.b_body_T());  // the field the split used
                       const double roll_yaw2 = b_law.x() * b_law.x() + b_law.z() * b_law.z();
-                      if (K > 0.0 && roll_yaw2 > 0.0) {
+                      const double min_field_T = node.modes.aero->min_field_T;  // below it the split gives no flaps
+                      if (K > 0.0 && roll_yaw2 >= min_field_T * min_field_T) {
                         const Eigen::Vector3d wanted = cmd.delivered() * Eigen::Vector3d(b_law.x(), 0.0, b_law.z()) *
                                                        b_law.dot(C) / roll_yaw2;
                         const Eigen::Vector2d c = sim::Flaps::normalisedTorques(bus::vec4(cmd.theta_rad()));

@@ -151,12 +151,17 @@ std::vector<std::string> scenarioCautions(const bus::Scenario& scenario) {
   if (!problems.empty()) return cautions;
   if (const auto reach = angleOnlyBrakingReach(scenario, vehicle); reach && !reach->holds) {
     constexpr double kDeg = 180.0 / std::numbers::pi;
+    // Pulses fall on command steps: the longest T2 that holds, rounded down to one.
+    const double step_s = scenario.componentStep_s("thruster_sequencer");
+    const double on_steps_s = std::floor(reach->longest_interval_s / step_s + 1e-9) * step_s;
     cautions.push_back(fmt::format(
         "{}: components.thruster_sequencer.braking_interval_s: seed S1's condition on T2 does not hold: "
         "braking {} pulses from {:.4g} deg/s takes the angle {:.4g} deg past the target, beyond the nearer "
-        "limit {:.4g} deg away; braking_interval_s <= {:.4g} s would hold it",
+        "limit {:.4g} deg away; braking_interval_s <= {:.4g} s would hold it ({})",
         scenario.file, reach->braking_pulses, reach->drift_rate_rad_s * kDeg, reach->travel_rad * kDeg,
-        reach->room_rad * kDeg, reach->longest_interval_s));
+        reach->room_rad * kDeg, reach->longest_interval_s,
+        on_steps_s > 0.0 ? fmt::format("on {:.4g} s command steps: {:.4g} s", step_s, on_steps_s)
+                         : fmt::format("none on {:.4g} s command steps: a shorter step is needed", step_s)));
   }
   return cautions;
 }

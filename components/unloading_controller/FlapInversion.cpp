@@ -218,6 +218,8 @@ FlapSolution FlapInversion::solveReachable(const Eigen::Vector2d& c) const {
   const Pattern second = one_per_wing_first ? yawPair(c(1) >= 0.0) : onePerWing();
   for (const Pattern* p : {&first, &second}) {
     if (p->branch != FlapBranch::kUnavailable && solveExact(*p, c, out)) return out;
+    // The seed's closed forms hold for the pattern its test C2 picks only.
+    if (params_.seed_closed_form) break;
   }
   return out;  // solveExact writes only what it solved
 }

@@ -113,6 +113,9 @@ void readAero(bus::ParamReader& r, const vehicle::VehicleDescription& known, Unl
     a.problem("failed_flap", "must be 1..4 (plate theta1..theta4), or 0 for none");
   } else if (failed > 0) {
     p.flaps.failed[static_cast<std::size_t>(failed - 1)] = true;
+    if (p.flaps.seed_closed_form) {
+      a.problem("flap_solver", "seed: the seed's closed forms have no replacement pattern for a failed plate");
+    }
   }
   a.finish();
   node.modes.aero = p;

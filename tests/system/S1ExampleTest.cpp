@@ -91,7 +91,8 @@ TEST_CASE("S1 worked example over the bus: n = 20 first, braking by the rule, se
   CHECK(check.output.find("caution: " + kExample +
                           ": components.thruster_sequencer.braking_interval_s: seed S1's condition on T2 does "
                           "not hold: braking 10 pulses from 1 deg/s takes the angle 4.65 deg past the target, "
-                          "beyond the nearer limit 1 deg away; braking_interval_s <= 0.1889 s would hold it") !=
+                          "beyond the nearer limit 1 deg away; braking_interval_s <= 0.1889 s would hold it (on 0.1 s command "
+                          "steps: 0.1 s)") !=
         std::string::npos);
 }
 

@@ -313,12 +313,13 @@ TEST_CASE("S0 cycle: with the unloading sign, each pulse drains the stored momen
 
 TEST_CASE("S0: the seed's closed form on ROSAT's four skewed wheels, their null-space motion included",
           "[estimator][s0]") {
-  // ROSAT's layout (deploy/scenarios/default.yaml): four wheels 20° off the x–z and
-  // x–y planes, 0.12 kg m² each. The body's momentum reaches the estimator only as four
-  // tachometer speeds; on top of the share the pseudo-inverse gives each wheel, the
-  // wheels run a null-space motion (a·n = 0: no body momentum) that grows through the
-  // window, as momentum management moves it. The seed's closed form on H = Σ a_i I Ω_i
-  // and the general solution on what the four tachometers read keep the orthogonal bounds.
+  // ROSAT's layout (deploy/scenarios/default.yaml): two wheels in the x–z plane 20° off z,
+  // two in the x–y plane 20° off y, 0.12 kg m² each. The body's momentum reaches the
+  // closed form only as four tachometer speeds, made here by an independent pseudo-inverse
+  // plus a null-space motion (a·n = 0: no body momentum) that grows through the window, as
+  // momentum management moves it: what is checked is the read through the skewed axes and
+  // inertias (WheelGeometry::momentum_B_Nms), and that the null-space motion leaves no
+  // trace in the seed's form or the general one.
   WheelGeometry rosat;
   rosat.count = 4;
   const double s = 0.3420201433, c = 0.9396926208;
