@@ -79,8 +79,7 @@ void summarizeAeroUnloading(const bus::Scenario& scenario, const bus::Recording&
                       const double roll_yaw2 = b_law.x() * b_law.x() + b_law.z() * b_law.z();
                       const double min_field_T = node.modes.aero->min_field_T;  // below it the split gives no flaps
                       if (K > 0.0 && roll_yaw2 >= min_field_T * min_field_T) {
-                        const Eigen::Vector3d wanted = cmd.delivered() * Eigen::Vector3d(b_law.x(), 0.0, b_law.z()) *
-                                                       b_law.dot(C) / roll_yaw2;
+                        const Eigen::Vector3d wanted = cmd.delivered() * unloading_controller::leastFlapTorque_B_Nm(C, b_law);
                         const Eigen::Vector2d c = sim::Flaps::normalisedTorques(bus::vec4(cmd.theta_rad()));
                         if (wanted.norm() > 0.0) {
                           flap_error2 += (K * Eigen::Vector3d(c.x(), 0.0, c.y()) - wanted).squaredNorm() / wanted.squaredNorm();

@@ -44,7 +44,7 @@ AeroAllocationOutput AeroAllocation::step(const Input& in, std::int64_t /*t_ns*/
   Eigen::Vector3d c_aero = Eigen::Vector3d::Zero();
   const bool air = in.flap_scale_Nm > 0.0 && std::isfinite(in.flap_scale_Nm);
   if (air && params_.split == AeroSplit::kMagneticAero && d >= min_sq) {
-    c_aero = Eigen::Vector3d(B.x(), 0.0, B.z()) * (B.dot(C) / d);
+    c_aero = leastFlapTorque_B_Nm(C, B);
   } else if (air && params_.split == AeroSplit::kFlapsOnly) {
     c_aero = Eigen::Vector3d(C.x(), 0.0, C.z());
   }

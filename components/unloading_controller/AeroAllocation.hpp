@@ -49,6 +49,14 @@ struct AeroAllocationOutput {
   bool flaps_saturated = false;
 };
 
+/// [N m] Eq. II: the least flap torque, about roll x and yaw z only, that completes the
+/// demand c with a torque ⟂ b: C_A = (Bx, 0, Bz)(B·C)/(Bx² + Bz²). The caller keeps
+/// Bx² + Bz² away from 0.
+inline Eigen::Vector3d leastFlapTorque_B_Nm(const Eigen::Vector3d& c_demand_B_Nm, const Eigen::Vector3d& b_B_T) {
+  const double d = b_B_T.x() * b_B_T.x() + b_B_T.z() * b_B_T.z();
+  return Eigen::Vector3d(b_B_T.x(), 0.0, b_B_T.z()) * (b_B_T.dot(c_demand_B_Nm) / d);
+}
+
 /// Seed S2's minimum-drag split (CNES FR2718105 / CN1148836, eqs. I–III; algorithms.md S2).
 /// The coils cannot torque along B. With the flaps acting about roll x and yaw z only, the
 /// smallest flap torque that completes C is C_A = (Bx, 0, Bz)(B·C)/(Bx² + Bz²) (eq. II):

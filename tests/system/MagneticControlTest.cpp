@@ -7,9 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
-#include <filesystem>
 #include <limits>
-#include <fstream>
 #include <sstream>
 #include <vector>
 
@@ -17,28 +15,17 @@
 
 #include "tests/support/Rig.hpp"
 #include "tests/support/Run.hpp"
-#include "tests/support/TestDomain.hpp"
 
-namespace fs = std::filesystem;
 using namespace flatsat;
 
 namespace {
 
 using test::kFlatsat;
 
-nlohmann::json runScenario(const std::string& file, const std::string& tag, const std::string& extra) {
-  test::exportTestDomain();
-  const fs::path out = fs::temp_directory_path() / ("flatsat-test-" + tag + "-" + std::to_string(::getpid()));
-  fs::remove_all(out);
-  // Composed (ComposedTest: the same recording as the multi-process rig): orbits in seconds.
-  const auto command = test::runCommand(kFlatsat + " run --composed --no-plots " + std::string(FLATSAT_SCENARIO_DIR) +
-                                        "/" + file + " -q --out " + out.string() + " " + extra);
-  INFO(command.output);
-  REQUIRE(command.exit_code == 0);
-  nlohmann::json summary;
-  std::ifstream(out / "summary.json") >> summary;
-  fs::remove_all(out);  // kept only when the run failed, for its logs
-  return summary;
+/// Composed (ComposedTest: the same recording as the multi-process rig): orbits in seconds.
+nlohmann::json runComposed(const std::string& file, const std::string& tag, const std::string& extra) {
+  return test::runScenario(std::string(FLATSAT_SCENARIO_DIR) + "/" + file, test::freshDir(tag), "--composed " + extra)
+      .summary;
 }
 
 /// The numeric rows of `flatsat study NAME --cases 50 [--scenario FILE]`'s table, each
@@ -83,7 +70,7 @@ double median(const std::vector<std::vector<double>>& rows, std::size_t column) 
 
 TEST_CASE("B-dot detumbles the rig from 10 deg/s below 0.2 deg/s within 3 orbits", "[unloading_controller][system][bdot]") {
   // Seed 2 of `flatsat study detumble`, run over DDS with every component its own process.
-  const auto s = runScenario("detumble.yaml", "detumble", "--seed 2");
+  const auto s = runComposed("detumble.yaml", "detumble", "--seed 2");
   INFO(s.dump(2));
   REQUIRE_FALSE(s["time_to_detumble_s"].is_null());
   CHECK(s["rate_deg_s_final"].get<double>() < 0.2);
@@ -106,7 +93,7 @@ TEST_CASE("B-dot: all 50 seeded tumbles of 10 deg/s below 0.2 deg/s within 3 orb
 }
 
 TEST_CASE("S4 spin capture holds body z within 5 deg of the orbit normal at 2 deg/s within 5 orbits", "[unloading_controller][system][bdot]") {
-  const auto s = runScenario("s4_spin.yaml", "s4spin", "--seed 3");
+  const auto s = runComposed("s4_spin.yaml", "s4spin", "--seed 3");
   INFO(s.dump(2));
   REQUIRE_FALSE(s["time_to_capture_s"].is_null());
   CHECK(s["time_to_capture_s"].get<double>() <= 5.0 * 5740.0);  // captured and held to the end (6 orbits)
@@ -149,7 +136,7 @@ TEST_CASE("S4 spin capture: the corrected law captures all 50 seeded tumbles, th
 
 TEST_CASE("S4 as written on the rig (s4_spin_seed.yaml): summary keys say it never captures",
           "[unloading_controller][system][bdot]") {
-  const auto s = runScenario("s4_spin_seed.yaml", "s4seed", "--seed 3");
+  const auto s = runComposed("s4_spin_seed.yaml", "s4seed", "--seed 3");
   INFO(s.dump(2));
   CHECK(s["time_to_capture_s"].is_null());
   // Spun up, not aligned (the study's row for seed 3: axis 62.9 deg, rate 7.8 % off 3ω0).

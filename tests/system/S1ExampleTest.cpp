@@ -6,17 +6,13 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "tests/support/Rig.hpp"
 #include "tests/support/Run.hpp"
-#include "tests/support/TestDomain.hpp"
 
-namespace fs = std::filesystem;
 using namespace flatsat;
 
 namespace {
@@ -26,16 +22,7 @@ const std::string kExample = std::string(FLATSAT_SCENARIO_DIR) + "/s1_example.ya
 const std::string kSettling = std::string(FLATSAT_SCENARIO_DIR) + "/s1_settling.yaml";
 
 nlohmann::json runExample(const std::string& tag, const std::string& extra, const std::string& scenario = kExample) {
-  test::exportTestDomain();
-  const fs::path out = fs::temp_directory_path() / ("flatsat-test-s1-" + tag + "-" + std::to_string(::getpid()));
-  fs::remove_all(out);
-  const auto command = test::runCommand(kFlatsat + " run " + scenario + " -q --no-plots --out " + out.string() + " " + extra);
-  INFO(command.output);
-  REQUIRE(command.exit_code == 0);
-  nlohmann::json summary;
-  std::ifstream(out / "summary.json") >> summary;
-  fs::remove_all(out);
-  return summary;
+  return test::runScenario(scenario, test::freshDir("s1-" + tag), extra).summary;
 }
 
 /// Every braking follows its correction with ⌊n/2⌋ pulses (a correction with n = 1 brakes
