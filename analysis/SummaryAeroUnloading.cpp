@@ -36,6 +36,7 @@ void summarizeAeroUnloading(const bus::Scenario& scenario, const bus::Recording&
   unloading_controller::AeroAllocationParams alone = *node.modes.aero;
   alone.split = unloading_controller::AeroSplit::kFlapsOnly;
   const unloading_controller::AeroAllocation flaps_alone(alone);
+  const sim::FlapWings wings = alone.wings;
 
   // The truth of step k holds the angles commanded at step k − 1 over [t_k−1, t_k]; the
   // command of step k acts on the next. Pair each command with the truth that shows it.
@@ -70,19 +71,20 @@ void summarizeAeroUnloading(const bus::Scenario& scenario, const bus::Recording&
                       delivered += cmd.delivered();
                       aero += shown->second.tau_flaps_B_Nm.norm();
                       along_B += std::abs(C.dot(B)) / B.norm();
-                      least += std::abs(C.dot(B)) / std::hypot(B.x(), B.z());
+                      least += std::abs(C.dot(B)) / unloading_controller::fieldInFlapPlane_B(B, wings).norm();
                       const double K = cmd.flap_scale_Nm();
                       drag += K * unloading_controller::FlapInversion::dragShape(bus::vec4(cmd.theta_rad()));
                       // The flaps' share the split asked for (eq. II), as delivered, against the
                       // torque the commanded angles give by the seed's shapes: the inversion's error.
                       const Eigen::Vector3d b_law = bus::vec3(cmd.b_body_T());  // the field the split used
-                      const double roll_yaw2 = b_law.x() * b_law.x() + b_law.z() * b_law.z();
+                      const double in_plane = unloading_controller::fieldInFlapPlane_B(b_law, wings).norm();
                       const double min_field_T = node.modes.aero->min_field_T;  // below it the split gives no flaps
-                      if (K > 0.0 && roll_yaw2 >= min_field_T * min_field_T) {
-                        const Eigen::Vector3d wanted = cmd.delivered() * unloading_controller::leastFlapTorque_B_Nm(C, b_law);
+                      if (K > 0.0 && in_plane >= min_field_T) {
+                        const Eigen::Vector3d wanted =
+                            cmd.delivered() * unloading_controller::leastFlapTorque_B_Nm(C, b_law, wings);
                         const Eigen::Vector2d c = sim::Flaps::normalisedTorques(bus::vec4(cmd.theta_rad()));
                         if (wanted.norm() > 0.0) {
-                          flap_error2 += (K * Eigen::Vector3d(c.x(), 0.0, c.y()) - wanted).squaredNorm() / wanted.squaredNorm();
+                          flap_error2 += (K * sim::flapTorqueShape_B(c, wings) - wanted).squaredNorm() / wanted.squaredNorm();
                           ++flap_demands;
                         }
                       }

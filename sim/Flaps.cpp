@@ -13,7 +13,25 @@ namespace {
 // numbers 1 and 3, on the −y wing for 2 and 4.
 constexpr double wingSign(int i) { return i % 2 == 0 ? 1.0 : -1.0; }
 
+/// The along-y layout → the body: a quarter turn about x for wings along z.
+Eigen::Vector3d layout_B(const Eigen::Vector3d& along_y, FlapWings wings) {
+  if (wings == FlapWings::kAlongY) return along_y;
+  return {along_y.x(), -along_y.z(), along_y.y()};
+}
+
 }  // namespace
+
+std::optional<FlapWings> flapWingsFromName(const std::string& name) {
+  if (name == "y") return FlapWings::kAlongY;
+  if (name == "z") return FlapWings::kAlongZ;
+  return std::nullopt;
+}
+
+Eigen::Vector3d flapSecondAxis_B(FlapWings wings) { return layout_B(Eigen::Vector3d::UnitZ(), wings); }
+
+Eigen::Vector3d flapTorqueShape_B(const Eigen::Vector2d& c, FlapWings wings) {
+  return c.x() * Eigen::Vector3d::UnitX() + c.y() * flapSecondAxis_B(wings);
+}
 
 std::vector<std::string> FlapsParams::validate() const {
   std::vector<std::string> errors;
@@ -56,8 +74,8 @@ std::array<Panel, kFlapPanelCount> Flaps::panels(const Eigen::Vector4d& theta_ra
     const double side = wingSign(i);
     Panel face;
     face.area_m2 = params_.plate_area_m2;
-    face.normal_B = Eigen::Vector3d(side * std::sin(theta_rad(i)), 0.0, std::cos(theta_rad(i)));
-    face.r_cp_B_m = Eigen::Vector3d(0.0, side * params_.lever_arm_m, 0.0);
+    face.normal_B = layout_B({side * std::sin(theta_rad(i)), 0.0, std::cos(theta_rad(i))}, params_.wings);
+    face.r_cp_B_m = layout_B({0.0, side * params_.lever_arm_m, 0.0}, params_.wings);
     face.specular = params_.specular;
     face.diffuse = params_.diffuse;
     face.absorbed = params_.absorbed;
@@ -81,9 +99,8 @@ Eigen::Vector2d Flaps::normalisedTorques(const Eigen::Vector4d& theta_rad) {
 
 Eigen::Vector3d Flaps::nominalTorque_B_Nm(const Eigen::Vector4d& theta_rad, double density_kg_m3,
                                           double speed_m_s) const {
-  const Eigen::Vector2d c = normalisedTorques(theta_rad);
   const double scale = 2.0 * density_kg_m3 * params_.plate_area_m2 * speed_m_s * speed_m_s * params_.lever_arm_m;
-  return scale * Eigen::Vector3d(c(0), 0.0, c(1));
+  return scale * flapTorqueShape_B(normalisedTorques(theta_rad), params_.wings);
 }
 
 }  // namespace flatsat::sim

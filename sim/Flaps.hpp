@@ -3,6 +3,7 @@
 
 #include <array>
 #include <numbers>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -16,11 +17,29 @@ inline constexpr int kFlapCount = 4;
 /// Each plate is exposed on both sides: two panels per plate.
 inline constexpr int kFlapPanelCount = 2 * kFlapCount;
 
+/// The body axis the two flap wings extend along (seed S2). Polar orbits (the seed's
+/// Figs. 2 and 3): along pitch y, the plates give roll and yaw. Equatorial orbit C
+/// (Fig. 4, claim 8): along yaw z, the plates give roll and pitch, the axis the field
+/// nearly lies along there and the coils cannot torque about.
+enum class FlapWings { kAlongY, kAlongZ };
+
+/// "y", "z" → wings; nullopt for anything else.
+std::optional<FlapWings> flapWingsFromName(const std::string& name);
+
+/// [-] Body direction of the flaps' second torque (the one c_az scales): yaw +z with the
+/// wings along y; pitch −y with the wings along z (the along-y layout turned a quarter
+/// about x: y → z, z → −y).
+Eigen::Vector3d flapSecondAxis_B(FlapWings wings);
+
+/// [-] c_ax x̂ + c_az · flapSecondAxis_B: the flaps' torque direction and size per K.
+Eigen::Vector3d flapTorqueShape_B(const Eigen::Vector2d& c, FlapWings wings);
+
 /// Aerodynamic flaps of seed S2 (CNES, FR2718105 / CN1148836).
 struct FlapsParams {
   bool fitted = false;                        // no flaps unless set
+  FlapWings wings = FlapWings::kAlongY;       // [-] wing axis: y (polar orbits) or z (equatorial, claim 8)
   double plate_area_m2 = 0.0;                 // [m²] A_p, each of the four plates (the seed's S/2), > 0
-  double lever_arm_m = 0.0;                   // [m] l, centre of mass to a plate's centre along ±y, > 0
+  double lever_arm_m = 0.0;                   // [m] l, centre of mass to a plate's centre along the wings, > 0
   double max_angle_rad = std::numbers::pi / 2;  // [rad] |θi| limit, (0, π/2]
   double specular = 0.0;                      // [-] optical fractions of both faces, as Panel
   double diffuse = 0.0;                       // [-]
@@ -50,6 +69,8 @@ struct FlapsParams {
 ///   τ = 2ρ A_p V² l · (c_ax, 0, c_az),
 ///   c_ax = Σ ½ sin 2θi |sin θi|,   c_az = Σ (−1)^i |sin θi|³
 /// (algorithms.md's c_ax = Σ sin 2θi |sin θi| is twice this physical roll shape).
+/// With the wings along z (claim 8) all of the above is turned a quarter about x:
+/// plates 1, 3 on the +z wing, normals (±sin θi, −cos θi, 0), and τ = K (c_ax, −c_az, 0).
 /// Derivation, and how the seed's factors read: docs/magnetic_control.md,
 /// "The flaps' torque, derived".
 class Flaps {
@@ -67,7 +88,7 @@ class Flaps {
   /// [-] (c_ax, c_az) of the seed's closed form above.
   static Eigen::Vector2d normalisedTorques(const Eigen::Vector4d& theta_rad);
 
-  /// [N m] The closed form τ = 2ρA_pV²l (c_ax, 0, c_az) for wind V [m/s] along +x.
+  /// [N m] The closed form τ = 2ρA_pV²l · flapTorqueShape_B(c) for wind V [m/s] along +x.
   Eigen::Vector3d nominalTorque_B_Nm(const Eigen::Vector4d& theta_rad, double density_kg_m3, double speed_m_s) const;
 
  private:

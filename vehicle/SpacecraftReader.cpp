@@ -122,6 +122,13 @@ void readSpacecraft(bus::ParamReader spacecraft, VehicleDescription& p) {
   p.thrusters = readList<ThrusterParams>(spacecraft, "thrusters", readThruster);
   auto flaps = spacecraft.section("flaps");
   p.flaps.fitted = spacecraft.has("flaps");
+  std::string wings = "y";
+  flaps.read("wings_along", wings);
+  if (const auto parsed = sim::flapWingsFromName(wings)) {
+    p.flaps.wings = *parsed;
+  } else {
+    flaps.problem("wings_along", "'" + wings + "' is neither y (polar orbits: roll and yaw) nor z (equatorial: roll and pitch)");
+  }
   flaps.read("plate_area_m2", p.flaps.plate_area_m2, "m^2");
   flaps.read("lever_arm_m", p.flaps.lever_arm_m, "m");
   flaps.read("max_angle_rad", p.flaps.max_angle_rad, "rad");

@@ -43,8 +43,9 @@ struct FieldModel {
   sim::DipoleCoefficients dipole;     ///< [nT] degree-1 coefficients at the epoch's year (always loaded)
   sim::GaussCoefficients harmonics;   ///< [nT] spherical_harmonics: IGRF-14 or WMM2025 at the epoch's decimal year
   int degree = sim::GaussCoefficients::kMaxDegree;  ///< [-] spherical_harmonics: highest degree used, 1..13
-  /// Onboard only (`onboard.field_model: spot`): seed S2's first-harmonic field along the
-  /// orbit (claim 5), B0 from the dipole's g10; it replaces the models above.
+  /// Onboard only (`onboard.field_model: spot`): seed S2's field along the orbit (claim 5),
+  /// its first harmonic (B0 from the dipole's g10) or, with `onboard.spot_harmonics: odd`,
+  /// harmonics 1, 3 and 5 of IGRF's zonal part; it replaces the models above.
   std::optional<sim::SpotFieldModel> spot;
 
   std::vector<std::string> validate() const;

@@ -9,6 +9,7 @@
 
 #include "bus/FaultFields.hpp"
 #include "sim/Constants.hpp"
+#include "sim/SphericalHarmonicField.hpp"
 #include "vehicle/ReaderSections.hpp"
 
 namespace flatsat::vehicle {
@@ -213,6 +214,25 @@ void readAtmosphere(const bus::Scenario& scenario, bus::ParamReader& environment
   }
 }
 
+/// onboard.spot_harmonics: `first`, the seed's first harmonic (claim 5), or `odd`, its
+/// improved model: harmonics 1, 3 and 5 of IGRF's zonal part along the onboard orbit.
+void readSpotHarmonics(const bus::Scenario& scenario, bus::ParamReader& onboard, const FieldFiles& files,
+                       double coefficients_year, VehicleDescription& v) {
+  std::string harmonics = "first";
+  onboard.read("spot_harmonics", harmonics);
+  if (!v.field.spot || harmonics == "first") return;
+  if (harmonics != "odd") {
+    onboard.problem("spot_harmonics", "'" + harmonics + "' is neither first nor odd (harmonics 1, 3 and 5)");
+    return;
+  }
+  try {
+    const sim::SphericalHarmonicField igrf = sim::igrf14(findDataFile(scenario, files.igrf), coefficients_year);
+    v.field.spot = sim::SpotFieldModel::zonalHarmonics(igrf, v.orbit.semi_major_axis_m, v.orbit.inclination_rad, {1, 3, 5});
+  } catch (const std::exception& e) {
+    onboard.problem("spot_harmonics", e.what());
+  }
+}
+
 /// `onboard:`: what flight software believes where it differs from the truth.
 /// Each item is checked only where the section gives it: the truth's own
 /// problems are reported once, at the truth's keys.
@@ -230,6 +250,20 @@ void readOnboard(const bus::Scenario& scenario, bus::ParamReader onboard, const 
   wheels.finish();
   if (onboard.has("inertia_kg_m2") || onboard.has("wheels")) onboard.problems(v.body.validate());
   if (onboard.has("sensors")) readSensorMountings(onboard.section("sensors"), v.sensors);
+  // The orbit first: SPOT's harmonics are taken along it.
+  if (onboard.has("orbit")) {
+    auto orbit = onboard.section("orbit");
+    std::string propagator = "truth";
+    orbit.read("propagator", propagator);
+    if (propagator == "kepler") {
+      // Two-body only; the mass and areas stay the spacecraft's (station keeping's thrust).
+      v.orbit_track.propagator = sim::OrbitPropagation::kKepler;
+    } else if (propagator != "truth") {
+      orbit.problem("propagator", "'" + propagator + "' is neither truth nor kepler");
+    }
+    readElements(orbit, v.orbit);
+    orbit.finish();
+  }
   if (onboard.has("field_model") || onboard.has("field_epoch_utc")) {
     std::string model = truth_model;
     onboard.read("field_model", model);
@@ -247,21 +281,14 @@ void readOnboard(const bus::Scenario& scenario, bus::ParamReader onboard, const 
     FieldFiles named_by_environment = files;
     named_by_environment.igrf_key = named_by_environment.wmm_key = "field_model";
     loadField(scenario, onboard, "field_model", model, named_by_environment, coefficients_epoch, true, v.field);
+    readSpotHarmonics(scenario, onboard, files, sim::decimalYear(coefficients_epoch), v);
+  }
+  if (onboard.has("spot_harmonics") && !v.field.spot) {
+    std::string unused;
+    onboard.read("spot_harmonics", unused);
+    onboard.problem("spot_harmonics", "only with field_model: spot");
   }
   if (onboard.has("field_degree")) readDegree(onboard, v.field);
-  if (onboard.has("orbit")) {
-    auto orbit = onboard.section("orbit");
-    std::string propagator = "truth";
-    orbit.read("propagator", propagator);
-    if (propagator == "kepler") {
-      // Two-body only; the mass and areas stay the spacecraft's (station keeping's thrust).
-      v.orbit_track.propagator = sim::OrbitPropagation::kKepler;
-    } else if (propagator != "truth") {
-      orbit.problem("propagator", "'" + propagator + "' is neither truth nor kepler");
-    }
-    readElements(orbit, v.orbit);
-    orbit.finish();
-  }
   if (onboard.has("faults")) v.faults = readActuatorFaults(onboard, v);
   onboard.finish();
 }

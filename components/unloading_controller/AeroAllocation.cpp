@@ -35,7 +35,8 @@ AeroAllocationOutput AeroAllocation::step(const Input& in, std::int64_t /*t_ns*/
   const Eigen::Vector3d& B = in.b_B_T;
   const Eigen::Vector3d& C = in.c_demand_B_Nm;
   const double b_sq = B.squaredNorm();
-  const double d = B.x() * B.x() + B.z() * B.z();
+  const Eigen::Vector3d second = sim::flapSecondAxis_B(params_.wings);
+  const double d = fieldInFlapPlane_B(B, params_.wings).squaredNorm();
   const double min_sq = params_.min_field_T * params_.min_field_T;
   if (params_.split == AeroSplit::kDragOnly) out.flaps = inversion_.dragOnly(params_.drag_only_angle_rad);
   if (!C.allFinite() || !(b_sq >= min_sq) || !std::isfinite(b_sq) || C.isZero(0.0)) return out;
@@ -44,9 +45,9 @@ AeroAllocationOutput AeroAllocation::step(const Input& in, std::int64_t /*t_ns*/
   Eigen::Vector3d c_aero = Eigen::Vector3d::Zero();
   const bool air = in.flap_scale_Nm > 0.0 && std::isfinite(in.flap_scale_Nm);
   if (air && params_.split == AeroSplit::kMagneticAero && d >= min_sq) {
-    c_aero = leastFlapTorque_B_Nm(C, B);
+    c_aero = leastFlapTorque_B_Nm(C, B, params_.wings);
   } else if (air && params_.split == AeroSplit::kFlapsOnly) {
-    c_aero = Eigen::Vector3d(C.x(), 0.0, C.z());
+    c_aero = C.x() * Eigen::Vector3d::UnitX() + C.dot(second) * second;
   }
   // Only the part ⟂ B is magnetic: M = B × C_M/|B|² gives M × B = C_M exactly when C_M ⟂ B.
   Eigen::Vector3d c_mag = C - c_aero;
@@ -61,7 +62,7 @@ AeroAllocationOutput AeroAllocation::step(const Input& in, std::int64_t /*t_ns*/
   }
   if (!c_aero.isZero(0.0)) {
     const FlapSolution flaps =
-        inversion_.solve(share * Eigen::Vector2d(c_aero.x(), c_aero.z()) / in.flap_scale_Nm);
+        inversion_.solve(share * Eigen::Vector2d(c_aero.x(), c_aero.dot(second)) / in.flap_scale_Nm);
     if (flaps.scale < 1.0) out.flaps_saturated = true;
     share *= flaps.scale;
     // The coils follow the flaps' share so that what is delivered stays along C.
@@ -70,7 +71,7 @@ AeroAllocationOutput AeroAllocation::step(const Input& in, std::int64_t /*t_ns*/
   out.delivered = share;
   out.m_B_Am2 = share * m;
   out.c_magnetic_B_Nm = out.m_B_Am2.cross(B);
-  out.c_aero_B_Nm = in.flap_scale_Nm * Eigen::Vector3d(out.flaps.c_achieved.x(), 0.0, out.flaps.c_achieved.y());
+  out.c_aero_B_Nm = in.flap_scale_Nm * sim::flapTorqueShape_B(out.flaps.c_achieved, params_.wings);
   return out;
 }
 

@@ -89,6 +89,7 @@ void readAero(bus::ParamReader& r, const vehicle::VehicleDescription& known, Unl
   AeroAllocationParams p;
   p.max_dipole_Am2 = node.modes.unload.max_dipole_Am2;
   p.min_field_T = node.modes.unload.min_field_T;
+  p.wings = known.flaps.wings;
   // The flaps' limit, and never past asin √(2/3), where a plate's roll torque peaks.
   p.flaps.max_angle_rad = std::min(known.flaps.max_angle_rad, p.flaps.max_angle_rad);
   std::string split = "magnetic_aero";

@@ -75,6 +75,48 @@ TEST_CASE("S2 split: coils and flaps together give the demanded torque with the 
   CHECK(out.c_aero_B_Nm.isApprox(b_hat * b_hat.dot(polar.c_demand_B_Nm), 1e-9));
 }
 
+TEST_CASE("S2 split on an equatorial orbit (claim 8): the flaps give roll and pitch, the coils the rest",
+          "[unloading_controller][unit][s2]") {
+  AeroAllocationParams p = wide(AeroSplit::kMagneticAero);
+  p.wings = sim::FlapWings::kAlongZ;
+  const AeroAllocation split(p);
+  std::mt19937 rng(13);
+  std::normal_distribution<double> n(0.0, 1.0);
+  std::uniform_real_distribution<double> tilt(-0.35, 0.35);
+  for (int k = 0; k < 2000; ++k) {
+    AeroAllocationInput in;
+    // The field near the equator: along the orbit normal (pitch), tilted by up to ~20°.
+    in.b_B_T = 3e-5 * Eigen::Vector3d(tilt(rng), -1.0, tilt(rng)).normalized();
+    in.c_demand_B_Nm = 2e-5 * Eigen::Vector3d(n(rng), n(rng), n(rng));
+    in.flap_scale_Nm = kFlapScale_Nm;
+    const auto out = split.step(in, 0);
+    REQUIRE(out.delivered == 1.0);
+    const Eigen::Vector3d& B = in.b_B_T;
+    const Eigen::Vector3d& C = in.c_demand_B_Nm;
+    // The plant's torque for these angles with the wings along z: K (c_ax, −c_az, 0).
+    const Eigen::Vector2d c = sim::Flaps::normalisedTorques(out.flaps.theta_rad);
+    const Eigen::Vector3d c_aero = kFlapScale_Nm * Eigen::Vector3d(c(0), -c(1), 0.0);
+    CHECK((out.m_B_Am2.cross(B) + c_aero - C).norm() < 1e-9 * C.norm());
+    CHECK(std::abs(out.m_B_Am2.dot(B)) < 1e-12 * out.m_B_Am2.norm() * B.norm());
+    // The least roll–pitch torque that completes C: (a, b, 0)·B = C·B, norm |C·B|/√(Bx² + By²).
+    CHECK(c_aero.norm() == Approx(std::abs(C.dot(B)) / std::hypot(B.x(), B.y())).epsilon(1e-9));
+    CHECK(out.c_aero_B_Nm.isApprox(c_aero, 1e-9));
+  }
+  // The field along pitch: the flaps take C's pitch, all of it; the coils roll and yaw.
+  AeroAllocationInput along_pitch;
+  along_pitch.b_B_T = {0.0, -3e-5, 0.0};
+  along_pitch.c_demand_B_Nm = {1e-5, -2e-5, 3e-5};
+  along_pitch.flap_scale_Nm = kFlapScale_Nm;
+  const auto out = split.step(along_pitch, 0);
+  CHECK(out.c_aero_B_Nm.isApprox(Eigen::Vector3d(0.0, -2e-5, 0.0), 1e-9));
+  CHECK(out.c_magnetic_B_Nm.isApprox(Eigen::Vector3d(1e-5, 0.0, 3e-5), 1e-9));
+  // Wings along y there, as on a polar orbit: B has no part in their roll–yaw plane, so no
+  // flap torque can complete C; the coils give C ⟂ B and the pitch is lost.
+  const auto polar_wings = AeroAllocation(wide(AeroSplit::kMagneticAero)).step(along_pitch, 0);
+  CHECK(polar_wings.c_aero_B_Nm.isZero(0.0));
+  CHECK(polar_wings.c_magnetic_B_Nm.isApprox(Eigen::Vector3d(1e-5, 0.0, 3e-5), 1e-9));
+}
+
 TEST_CASE("S2 split: less flap drag than the flaps alone for the same torques", "[unloading_controller][unit][s2]") {
   const AeroAllocation seed(wide(AeroSplit::kMagneticAero));
   const AeroAllocation flaps_only(wide(AeroSplit::kFlapsOnly));

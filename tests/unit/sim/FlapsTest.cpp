@@ -158,6 +158,61 @@ TEST_CASE("The seed's inversion assumes c_ax with the factor ½", "[sim][actuato
   }
 }
 
+TEST_CASE("Flaps on wings along yaw z (claim 8, equatorial orbit): roll and pitch, never yaw", "[sim][actuators]") {
+  // Seed Fig. 4: the plates extend along the yaw axis and turn about it. Built by hand:
+  // plates 1, 3 on the +z wing, 2, 4 on the −z wing at (0, 0, ±l), edge-on in the x–z plane
+  // at θ = 0, θi about the wing's outward axis; both faces exposed, specular molecules.
+  FlapsParams p = seedFlaps();
+  p.wings = FlapWings::kAlongZ;
+  const Flaps flaps(p);
+  const double scale = 2.0 * kRho * kArea * kV * kV * kArm;
+  const auto byHand = [](const Eigen::Vector4d& theta) {
+    std::vector<Panel> faces;
+    for (int i = 0; i < 4; ++i) {
+      const Eigen::Vector3d outward = (i % 2 == 0 ? 1.0 : -1.0) * Eigen::Vector3d::UnitZ();
+      for (const double side : {1.0, -1.0}) {
+        Panel face;
+        face.area_m2 = kArea;
+        face.normal_B = side * (Eigen::AngleAxisd(theta(i), outward) * Eigen::Vector3d::UnitY());
+        face.r_cp_B_m = kArm * outward;
+        face.aero_specular = 1.0;
+        faces.push_back(face);
+      }
+    }
+    return faces;
+  };
+  const std::vector<Eigen::Vector4d> angle_sets = {
+      {0.3, -0.2, 0.0, 0.7}, {-1.2, 0.4, 0.9, -0.05}, {0.0, 0.4, 0.0, -0.4}, {0.01, 0.02, -0.03, 0.04}};
+  for (const Eigen::Vector4d& theta : angle_sets) {
+    const ForceTorque by_hand = aerodynamicForceTorque(byHand(theta), kRho, kWind);
+    const auto panels = flaps.panels(theta);
+    const ForceTorque by_flaps = aerodynamicForceTorque(panels, kRho, kWind);
+    // The drag of the +z wing (plates 1, 3) along +x at (0, 0, l) pitches +y: (0, 0, l) × (D, 0, 0).
+    double c_ax = 0.0;
+    double pitch = 0.0;
+    for (int i = 0; i < 4; ++i) {
+      const double s = std::abs(std::sin(theta(i)));
+      c_ax += std::sin(theta(i)) * std::cos(theta(i)) * s;
+      pitch += (i % 2 == 0 ? 1.0 : -1.0) * s * s * s;
+    }
+    const double tolerance = 1e-12 * scale;
+    CHECK((by_hand.torque_B_Nm - scale * Eigen::Vector3d(c_ax, pitch, 0.0)).norm() < tolerance);
+    CHECK((by_flaps.torque_B_Nm - by_hand.torque_B_Nm).norm() < tolerance);
+    CHECK((flaps.nominalTorque_B_Nm(theta, kRho, kV) - by_hand.torque_B_Nm).norm() < tolerance);
+    CHECK((scale * flapTorqueShape_B(Flaps::normalisedTorques(theta), FlapWings::kAlongZ) - by_hand.torque_B_Nm).norm() <
+          tolerance);
+    // A specular plate pushes along its normal, in the x–y plane, from a point on z: whatever
+    // the wind's direction, no yaw.
+    for (const Eigen::Vector3d& wind : {Eigen::Vector3d(kV, 300.0, -500.0), Eigen::Vector3d(kV, -800.0, 200.0)}) {
+      CHECK(std::abs(aerodynamicForceTorque(panels, kRho, wind).torque_B_Nm.z()) < 1e-15 * scale);
+    }
+  }
+  CHECK(flapSecondAxis_B(FlapWings::kAlongY) == Eigen::Vector3d::UnitZ());
+  CHECK(flapSecondAxis_B(FlapWings::kAlongZ) == -Eigen::Vector3d::UnitY());
+  CHECK(flapWingsFromName("z") == FlapWings::kAlongZ);
+  CHECK_FALSE(flapWingsFromName("x").has_value());
+}
+
 TEST_CASE("Flap angle commands are limited", "[sim][actuators]") {
   FlapsParams p = seedFlaps();
   p.max_angle_rad = 0.5;

@@ -115,6 +115,7 @@ TEST_CASE("a vehicle's problems name the file and the key", "[vehicle]") {
                                   "spacecraft:\n"
                                   "  sensors: {star_tracker: {q_body_sensor: [1, 1, 0, 0]}, sun_sensor: {boresight: [1, 0, 0]}}\n"
                                   "  faults: [{kind: wheel_failed, channel: 7}]\n"
+                                  "  flaps: {plate_area_m2: 0.5, lever_arm_m: 2, wings_along: x}\n"
                                   "onboard:\n"
                                   "  wheels: {axes_body: [[1, 0, 0], [0, 1, 0]]}\n"
                                   "  field_model: igrf99\n"
@@ -127,9 +128,41 @@ TEST_CASE("a vehicle's problems name the file and the key", "[vehicle]") {
   CHECK(anyContains(list, "spacecraft.sensors.star_tracker.q_body_sensor"));
   CHECK(anyContains(list, "spacecraft.sensors.sun_sensor.boresight: unknown key"));
   CHECK(anyContains(list, "spacecraft.faults[0]"));
+  CHECK(anyContains(list, "spacecraft.flaps.wings_along: 'x' is neither y"));
   CHECK(anyContains(list, "onboard.wheels.axes_body: 2 axes for 4 wheels"));
   CHECK(anyContains(list, "onboard.field_model: 'igrf99' is not tilted_dipole, igrf14, wmm2025 or (onboard) spot"));
   CHECK(anyContains(list, "onboard.orbit.propagator: 'numerical' is neither truth nor kepler"));
+}
+
+TEST_CASE("onboard.spot_harmonics: the seed's first harmonic, or harmonics 1, 3 and 5 along the onboard orbit",
+          "[vehicle]") {
+  const OverDefault over;
+  bus::ConfigProblems problems;
+  const vehicle::Vehicle first = vehicle::readVehicle(over.load("first.yaml", "onboard: {field_model: spot}\n"), problems);
+  const vehicle::Vehicle odd = vehicle::readVehicle(
+      over.load("odd.yaml", "onboard: {field_model: spot, spot_harmonics: odd, orbit: {inclination_rad: 90 deg}}\n"),
+      problems);
+  INFO(problems.joined());
+  REQUIRE(problems.empty());
+  REQUIRE(first.onboard.field.spot.has_value());
+  REQUIRE(odd.onboard.field.spot.has_value());
+  // The seed's form has harmonic 1 only; the odd model adds 3 and 5 (IGRF's g30, g50 along
+  // the polar orbit given onboard) and leaves out the even ones (g20, g40).
+  const auto& c1 = first.onboard.field.spot->cosineTerms_T();
+  CHECK(c1[3].norm() == 0.0);
+  const auto& s_odd = odd.onboard.field.spot->sineTerms_T();
+  const auto& c_odd = odd.onboard.field.spot->cosineTerms_T();
+  CHECK(s_odd[3].norm() > 1e-7);
+  CHECK(s_odd[5].norm() > 1e-9);
+  CHECK(c_odd[2].norm() + s_odd[2].norm() + c_odd[0].norm() == 0.0);
+
+  bus::ConfigProblems refused;
+  vehicle::readVehicle(over.load("misplaced.yaml", "onboard: {field_model: igrf14, spot_harmonics: odd}\n"), refused);
+  vehicle::readVehicle(over.load("unknown.yaml", "onboard: {field_model: spot, spot_harmonics: all}\n"), refused);
+  INFO(refused.joined());
+  CHECK(anyContains(refused.list(), "misplaced.yaml"));
+  CHECK(anyContains(refused.list(), "onboard.spot_harmonics: only with field_model: spot"));
+  CHECK(anyContains(refused.list(), "onboard.spot_harmonics: 'all' is neither first nor odd"));
 }
 
 TEST_CASE("a problem of the truth is reported once, at its own key, not again for the onboard view", "[vehicle]") {
