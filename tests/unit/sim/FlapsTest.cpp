@@ -30,17 +30,19 @@ FlapsParams seedFlaps() {
   return p;
 }
 
-// The geometry as stated, built without Flaps: plates 1, 3 on the +y wing and
-// 2, 4 on the −y wing at (0, ±l, 0); θi turns plate i about its wing's outward
-// axis from the x–y plane; both faces exposed, specular molecules.
-std::vector<Panel> platesByHand(const Eigen::Vector4d& theta) {
+// The geometry as stated, built without Flaps: plates 1, 3 on the +wing wing and 2, 4
+// on the −wing wing at ±l·wing; θi turns plate i about its wing's outward axis from
+// the neutral plane (normal `neutral`, edge-on to the wind); both faces exposed,
+// specular molecules. The seed's polar layout: wings along y, neutral normal z.
+std::vector<Panel> platesByHand(const Eigen::Vector4d& theta, const Eigen::Vector3d& wing = Eigen::Vector3d::UnitY(),
+                                const Eigen::Vector3d& neutral = Eigen::Vector3d::UnitZ()) {
   std::vector<Panel> faces;
   for (int i = 0; i < 4; ++i) {
-    const Eigen::Vector3d outward = (i % 2 == 0 ? 1.0 : -1.0) * Eigen::Vector3d::UnitY();
+    const Eigen::Vector3d outward = (i % 2 == 0 ? 1.0 : -1.0) * wing;
     for (const double side : {1.0, -1.0}) {
       Panel face;
       face.area_m2 = kArea;
-      face.normal_B = side * (Eigen::AngleAxisd(theta(i), outward) * Eigen::Vector3d::UnitZ());
+      face.normal_B = side * (Eigen::AngleAxisd(theta(i), outward) * neutral);
       face.r_cp_B_m = kArm * outward;
       face.aero_specular = 1.0;
       faces.push_back(face);
@@ -166,25 +168,11 @@ TEST_CASE("Flaps on wings along yaw z (claim 8, equatorial orbit): roll and pitc
   p.wings = FlapWings::kAlongZ;
   const Flaps flaps(p);
   const double scale = 2.0 * kRho * kArea * kV * kV * kArm;
-  const auto byHand = [](const Eigen::Vector4d& theta) {
-    std::vector<Panel> faces;
-    for (int i = 0; i < 4; ++i) {
-      const Eigen::Vector3d outward = (i % 2 == 0 ? 1.0 : -1.0) * Eigen::Vector3d::UnitZ();
-      for (const double side : {1.0, -1.0}) {
-        Panel face;
-        face.area_m2 = kArea;
-        face.normal_B = side * (Eigen::AngleAxisd(theta(i), outward) * Eigen::Vector3d::UnitY());
-        face.r_cp_B_m = kArm * outward;
-        face.aero_specular = 1.0;
-        faces.push_back(face);
-      }
-    }
-    return faces;
-  };
   const std::vector<Eigen::Vector4d> angle_sets = {
       {0.3, -0.2, 0.0, 0.7}, {-1.2, 0.4, 0.9, -0.05}, {0.0, 0.4, 0.0, -0.4}, {0.01, 0.02, -0.03, 0.04}};
   for (const Eigen::Vector4d& theta : angle_sets) {
-    const ForceTorque by_hand = aerodynamicForceTorque(byHand(theta), kRho, kWind);
+    const ForceTorque by_hand =
+        aerodynamicForceTorque(platesByHand(theta, Eigen::Vector3d::UnitZ(), Eigen::Vector3d::UnitY()), kRho, kWind);
     const auto panels = flaps.panels(theta);
     const ForceTorque by_flaps = aerodynamicForceTorque(panels, kRho, kWind);
     // The drag of the +z wing (plates 1, 3) along +x at (0, 0, l) pitches +y: (0, 0, l) × (D, 0, 0).
