@@ -15,34 +15,54 @@ std::vector<std::string> MagnetometerBridgeParams::validate() const {
   return e;
 }
 
-MagnetometerBridge::MagnetometerBridge(const Params& params)
-    : params_(validated(params, "MagnetometerBridgeParams")) {}
+std::optional<MagnetometerFields> MagnetometerFields::of(const device_protocol::FrameSpec& frame, std::string& why) {
+  MagnetometerFields fields;
+  for (std::size_t i = 0; i < 3; ++i) {
+    const std::string leaf = "b_body_T[" + std::to_string(i) + "]";
+    const auto index = frame.fieldFor(leaf);
+    if (!index) {
+      why = "no field of frame '" + frame.name + "' carries " + leaf;
+      return std::nullopt;
+    }
+    fields.axis[i] = *index;
+    fields.scale_T[i] = frame.fields[*index].scale;
+  }
+  fields.sequence = frame.sequenceField();
+  return fields;
+}
+
+MagnetometerBridge::MagnetometerBridge(const Params& params, const MagnetometerFields& fields)
+    : params_(validated(params, "MagnetometerBridgeParams")), fields_(fields) {}
 
 void MagnetometerBridge::reset() { has_last_ = false; }
 
-MagnetometerBridgeOutput MagnetometerBridge::step(const FieldSample& sample) {
+MagnetometerBridgeOutput MagnetometerBridge::step(const device_protocol::RawValues& frame) {
   MagnetometerBridgeOutput out;
   Eigen::Vector3d b_S_T;
-  for (int i = 0; i < 3; ++i) b_S_T[i] = static_cast<double>(sample.b_nT[i]) * 1e-9;
+  for (std::size_t i = 0; i < 3; ++i) b_S_T[static_cast<Eigen::Index>(i)] = frame[fields_.axis[i]] * fields_.scale_T[i];
   out.saturated = (b_S_T.cwiseAbs().array() >= params_.range_T).any();
   out.b_B_T = params_.q_body_sensor * b_S_T;
-  // Unsigned arithmetic: a wrap of the 32-bit counter is not a gap.
-  if (has_last_) out.missed_samples = sample.sequence - last_sequence_ - 1;
-  has_last_ = true;
-  last_sequence_ = sample.sequence;
+  if (fields_.sequence) {
+    const auto sequence = static_cast<std::uint32_t>(frame[*fields_.sequence]);
+    // Unsigned arithmetic: a wrap of the 32-bit counter is not a gap.
+    if (has_last_) out.missed_samples = sequence - last_sequence_ - 1;
+    has_last_ = true;
+    last_sequence_ = sequence;
+  }
   return out;
 }
 
-FieldSample deviceSample(const Eigen::Vector3d& b_B_T, const MagnetometerBridgeParams& mounting,
-                         std::uint32_t sequence) {
+device_protocol::RawValues deviceFrame(const Eigen::Vector3d& b_B_T, const MagnetometerBridgeParams& mounting,
+                                       const device_protocol::FrameSpec& frame, const MagnetometerFields& fields,
+                                       std::uint32_t sequence) {
   const Eigen::Vector3d b_S_T = mounting.q_body_sensor.conjugate() * b_B_T;
-  FieldSample s;
-  s.sequence = sequence;
-  for (int i = 0; i < 3; ++i) {
-    const double clipped = std::clamp(b_S_T[i], -mounting.range_T, mounting.range_T);
-    s.b_nT[i] = static_cast<std::int32_t>(std::lround(clipped * 1e9));
+  device_protocol::RawValues raw(frame.fields.size(), 0.0);
+  for (std::size_t i = 0; i < 3; ++i) {
+    const double clipped = std::clamp(b_S_T[static_cast<Eigen::Index>(i)], -mounting.range_T, mounting.range_T);
+    raw[fields.axis[i]] = std::round(clipped / fields.scale_T[i]);
   }
-  return s;
+  if (fields.sequence) raw[*fields.sequence] = static_cast<double>(sequence);
+  return raw;
 }
 
 }  // namespace flatsat::magnetometer_bridge

@@ -11,6 +11,7 @@
 
 #include "bus/Convert.hpp"
 #include "bus/Stamp.hpp"
+#include "msg/MsgJson.hpp"
 #include "components/Processes.hpp"
 #include "components/magnetometer_bridge/SerialPort.hpp"
 #include "vehicle/VehicleReader.hpp"
@@ -21,7 +22,8 @@ MagnetometerBridgeNode::MagnetometerBridgeNode(bus::Bus& bus, bus::NodeOptions o
                                                const MagnetometerBridgeNodeParams& params)
     : Node(bus, std::move(options)),
       params_(params),
-      bridge_(params.bridge),
+      bridge_(params.bridge, params.fields),
+      parser_(params.protocol.frame),
       grants_(bus, bus::topics::kStepGrant, [this](const msg::StepGrant& g) {
         std::lock_guard lock(grant_mutex_);
         grant_ = Grant{{g.header().step(), g.header().sim_time_ns(), g.step_period_ns()},
@@ -49,8 +51,9 @@ void MagnetometerBridgeNode::run() {
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
-  SerialPort port(params_.device, params_.baud);
-  spdlog::info("{}: reading {} at {} baud", name(), params_.device, params_.baud);
+  SerialPort port(params_.device, params_.protocol.line);
+  spdlog::info("{}: reading {} at {} baud, frames per {}", name(), params_.device, params_.protocol.line.baud,
+               params_.protocol.file);
   publishHealth(msg::ComponentState::RUNNING, 0, "reading " + params_.device);
 
   std::array<std::uint8_t, 512> buffer{};
@@ -75,9 +78,10 @@ void MagnetometerBridgeNode::run() {
     if (std::chrono::steady_clock::now() >= next_health) {
       const auto& c = parser_.counts();
       publishHealth(msg::ComponentState::RUNNING, c.frames,
-                    "frames " + std::to_string(c.frames) + ", bad crc " + std::to_string(c.bad_crc) +
+                    "frames " + std::to_string(c.frames) + ", bad checksum " + std::to_string(c.bad_checksum) +
                         ", bad header " + std::to_string(c.bad_header) + ", skipped bytes " +
-                        std::to_string(c.skipped_bytes) + ", missed samples " + std::to_string(missed_));
+                        std::to_string(c.skipped_bytes) + ", bad value " + std::to_string(c.bad_value) +
+                        ", missed samples " + std::to_string(missed_));
       next_health += std::chrono::seconds(1);
     }
   }
@@ -88,6 +92,34 @@ std::string defaultDevicePath(const bus::NodeArgs& args) {
   return (std::filesystem::path(args.out_dir.empty() ? "." : args.out_dir) / "magnetometer.pty").string();
 }
 
+void readMagnetometerProtocol(const bus::Scenario& scenario, bus::ParamReader& r, bus::ConfigProblems& problems,
+                              device_protocol::DeviceProtocol& protocol, MagnetometerFields& fields) {
+  std::string file = "magnetometer.yaml";
+  r.read("protocol", file);
+  const auto units = [](const std::string& topic, const std::string& field) -> std::optional<std::string> {
+    if (topic != bus::topics::kMagnetometer.name) return std::nullopt;
+    for (const auto& leaf : msg::leafFields<msg::MagnetometerReading>()) {
+      if (leaf.name == field) return std::string(leaf.unit);
+    }
+    return std::nullopt;
+  };
+  const std::size_t before = problems.list().size();
+  protocol = device_protocol::readDeviceProtocol(device_protocol::findDeviceDescription(scenario.file, file), units, problems);
+  if (problems.list().size() > before) return r.problem("protocol", "'" + file + "' is not a usable description (above)");
+  if (protocol.topic != bus::topics::kMagnetometer.name) {
+    return r.problem("protocol", "'" + file + "' describes frames for " + protocol.topic + ", not " +
+                                     std::string(bus::topics::kMagnetometer.name));
+  }
+  std::string why;
+  if (const auto found = MagnetometerFields::of(protocol.frame, why)) {
+    fields = *found;
+  } else {
+    r.problem("protocol", "'" + file + "': " + why);
+  }
+  r.read("baud", protocol.line.baud);
+  r.problems(protocol.line.validate());
+}
+
 MagnetometerBridgeNodeParams readParams(const bus::Scenario& scenario, const vehicle::Vehicle& vehicle,
                                         const bus::NodeArgs& args, bus::ConfigProblems& problems) {
   MagnetometerBridgeNodeParams p;
@@ -96,11 +128,8 @@ MagnetometerBridgeNodeParams readParams(const bus::Scenario& scenario, const veh
   auto r = scenario.componentParams(args.name, problems);
   vehicle::refuseMovedKeys(r, {{"q_body_sensor", "spacecraft.sensors.magnetometer.q_body_sensor"}});
   r.read("device", p.device);
-  r.read("baud", p.baud);
+  readMagnetometerProtocol(scenario, r, problems, p.protocol, p.fields);
   r.read("range_T", p.bridge.range_T, "T");
-  if (p.baud != 9600 && p.baud != 19200 && p.baud != 38400 && p.baud != 57600 && p.baud != 115200) {
-    r.problem("baud", "must be 9600, 19200, 38400, 57600 or 115200");
-  }
   r.problems(p.bridge.validate());
   r.finish();
   return p;

@@ -7,6 +7,7 @@
 
 #include "bus/Node.hpp"
 #include "bus/NodeMain.hpp"
+#include "components/device_protocol/DeviceProtocol.hpp"
 #include "components/magnetometer_bridge/MagnetometerBridge.hpp"
 #include "vehicle/VehicleDescription.hpp"
 
@@ -14,8 +15,9 @@ namespace flatsat::magnetometer_bridge {
 
 struct MagnetometerBridgeNodeParams {
   MagnetometerBridgeParams bridge;
+  device_protocol::DeviceProtocol protocol;  // the device's frame and line (deploy/devices/magnetometer.yaml)
+  MagnetometerFields fields;                 // where its frame carries the field
   std::string device;  // serial port or pseudo-terminal (default: <run dir>/magnetometer.pty)
-  int baud = 115200;   // [baud] line rate, 9600..115200
 };
 
 /// Hardware bridge (architecture, "Hardware swap-in"): frames from the device's serial line out
@@ -35,7 +37,7 @@ class MagnetometerBridgeNode final : public bus::Node {
  private:
   MagnetometerBridgeNodeParams params_;
   MagnetometerBridge bridge_;
-  FrameParser parser_;
+  device_protocol::FrameParser parser_;
   std::uint64_t missed_ = 0;
   /// The step a sample arriving now belongs to: the newest grant plus the whole
   /// periods since it, rounded (a frame may come just before its step's grant).
@@ -56,5 +58,11 @@ MagnetometerBridgeNodeParams readParams(const bus::Scenario& scenario, const veh
 
 /// The pseudo-terminal path bridge and device simulator agree on by default.
 std::string defaultDevicePath(const bus::NodeArgs& args);
+
+/// The scenario key `protocol` (default: the shipped magnetometer.yaml) read and checked
+/// as a magnetometer's description: frames on flatsat/magnetometer carrying b_body_T;
+/// `baud` overrides its line rate. Problems go to `r` and `problems`.
+void readMagnetometerProtocol(const bus::Scenario& scenario, bus::ParamReader& r, bus::ConfigProblems& problems,
+                              device_protocol::DeviceProtocol& protocol, MagnetometerFields& fields);
 
 }  // namespace flatsat::magnetometer_bridge

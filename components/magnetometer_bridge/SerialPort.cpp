@@ -13,27 +13,45 @@
 namespace flatsat::magnetometer_bridge {
 
 namespace {
-speed_t speedFor(int baud, const std::string& what) {
+speed_t speedFor(std::uint32_t baud, const std::string& what) {
   switch (baud) {
+    case 921600: return B921600;
+    case 460800: return B460800;
+    case 230400: return B230400;
     case 115200: return B115200;
     case 57600: return B57600;
     case 38400: return B38400;
     case 19200: return B19200;
     case 9600: return B9600;
+    case 4800: return B4800;
+    case 2400: return B2400;
+    case 1200: return B1200;
     default: throw std::runtime_error(what + ": unsupported baud rate " + std::to_string(baud));
+  }
+}
+
+tcflag_t characterSize(int data_bits) {
+  switch (data_bits) {
+    case 5: return CS5;
+    case 6: return CS6;
+    case 7: return CS7;
+    default: return CS8;
   }
 }
 }  // namespace
 
-void makeRaw(int fd, int baud, const std::string& what) {
+void makeRaw(int fd, const device_protocol::LineSettings& line, const std::string& what) {
   termios tio{};
   if (tcgetattr(fd, &tio) != 0) {
     throw std::runtime_error(what + ": not a terminal: " + std::strerror(errno));
   }
   cfmakeraw(&tio);
   tio.c_cflag |= CLOCAL | CREAD;
-  tio.c_cflag &= ~(CSTOPB | CRTSCTS);
-  const speed_t speed = speedFor(baud, what);
+  tio.c_cflag &= ~(CSIZE | CSTOPB | CRTSCTS | PARENB | PARODD);
+  tio.c_cflag |= characterSize(line.data_bits);
+  if (line.stop_bits == 2) tio.c_cflag |= CSTOPB;
+  if (line.parity != "none") tio.c_cflag |= PARENB | (line.parity == "odd" ? PARODD : 0);
+  const speed_t speed = speedFor(line.baud, what);
   cfsetispeed(&tio, speed);
   cfsetospeed(&tio, speed);
   if (tcsetattr(fd, TCSANOW, &tio) != 0) {
@@ -41,11 +59,11 @@ void makeRaw(int fd, int baud, const std::string& what) {
   }
 }
 
-SerialPort::SerialPort(const std::string& path, int baud) {
+SerialPort::SerialPort(const std::string& path, const device_protocol::LineSettings& line) {
   fd_ = ::open(path.c_str(), O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
   if (fd_ < 0) throw std::runtime_error(path + ": cannot open: " + std::strerror(errno));
   try {
-    makeRaw(fd_, baud, path);
+    makeRaw(fd_, line, path);
     tcflush(fd_, TCIFLUSH);  // what the device sent before we listened is stale
   } catch (...) {
     ::close(fd_);

@@ -5,15 +5,17 @@
 #include <span>
 #include <string>
 
+#include "components/device_protocol/DeviceProtocol.hpp"
+
 namespace flatsat::magnetometer_bridge {
 
-/// A serial line in raw mode (8N1, no flow control, no echo) at a baud rate:
-/// a real port (/dev/ttyUSB0) or a pseudo-terminal's slave end. Closes on
-/// destruction.
+/// A serial line in raw mode (no flow control, no echo) with a device's line settings:
+/// a real port (/dev/ttyUSB0) or a pseudo-terminal's slave end (which ignores the
+/// settings). Closes on destruction.
 class SerialPort {
  public:
   /// @throws std::runtime_error naming the path and the reason
-  SerialPort(const std::string& path, int baud);
+  SerialPort(const std::string& path, const device_protocol::LineSettings& line);
   ~SerialPort();
   SerialPort(const SerialPort&) = delete;
   SerialPort& operator=(const SerialPort&) = delete;
@@ -26,8 +28,8 @@ class SerialPort {
   int fd_ = -1;
 };
 
-/// Puts a terminal file descriptor into raw 8N1 mode at the baud rate
-/// (115200, 57600, 38400, 19200 or 9600). @throws std::runtime_error otherwise.
-void makeRaw(int fd, int baud, const std::string& what);
+/// Puts a terminal file descriptor into raw mode with the line's rate, character size,
+/// parity and stop bits (LineSettings::validate()). @throws std::runtime_error otherwise.
+void makeRaw(int fd, const device_protocol::LineSettings& line, const std::string& what);
 
 }  // namespace flatsat::magnetometer_bridge

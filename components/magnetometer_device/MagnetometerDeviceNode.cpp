@@ -36,7 +36,11 @@ MagnetometerDeviceNode::MagnetometerDeviceNode(bus::Bus& bus, bus::NodeOptions o
   // Held open so the line exists (and stays raw) while no bridge listens.
   slave_ = ::open(slave.c_str(), O_RDWR | O_NOCTTY | O_CLOEXEC);
   if (slave_ < 0) throw std::runtime_error(slave + ": cannot open: " + std::strerror(errno));
-  magnetometer_bridge::makeRaw(slave_, params.baud, slave);
+  magnetometer_bridge::makeRaw(slave_, params.protocol.line, slave);
+  for (const auto& field : params.protocol.frame.fields) {
+    if (field.maps_to.empty()) continue;
+    for (std::size_t b = field.at; b < field.end(); ++b) measured_bytes_.push_back(b);
+  }
   std::filesystem::remove(params.link);
   std::filesystem::create_symlink(slave, params.link);
   spdlog::info("{}: device on {} (linked as {})", name(), slave, params.link);
@@ -54,17 +58,20 @@ void MagnetometerDeviceNode::send(const msg::TruthState& truth) {
   std::normal_distribution<double> noise(0.0, params_.noise_T);
   Eigen::Vector3d b_B = bus::vec3(truth.b_body_T());
   if (params_.noise_T > 0.0) b_B += Eigen::Vector3d(noise(random_), noise(random_), noise(random_));
-  auto frame = magnetometer_bridge::encodeFrame(
-      magnetometer_bridge::deviceSample(b_B, params_.mounting, sequence_++));
+  const auto& spec = params_.protocol.frame;
+  auto frame = device_protocol::encodeFrame(
+      spec, magnetometer_bridge::deviceFrame(b_B, params_.mounting, spec, params_.fields, sequence_++));
   std::uniform_real_distribution<double> uniform(0.0, 1.0);
   if (uniform(random_) < params_.corrupt_fraction) {
-    // One of three line faults: a flipped payload bit (CRC catches it), noise
-    // bytes before the frame (resynchronisation), a frame cut short.
+    // One of three line faults: a flipped bit of a measurement (the check catches it),
+    // noise with sync bytes in it before the frame (resynchronisation), a frame cut short.
     const int kind = static_cast<int>(uniform(random_) * 3);
-    if (kind == 0) frame[8 + static_cast<std::size_t>(uniform(random_) * 12)] ^= 0x10;
+    if (kind == 0) frame[measured_bytes_[static_cast<std::size_t>(uniform(random_) * measured_bytes_.size())]] ^= 0x10;
     if (kind == 1) {
-      const std::uint8_t garbage[] = {0xAA, 0x13, 0x55, 0xAA, 0x55, 0x02};
-      (void)!::write(master_, garbage, sizeof garbage);
+      std::vector<std::uint8_t> garbage = {spec.sync.front(), 0x13};
+      garbage.insert(garbage.end(), spec.sync.begin(), spec.sync.end());
+      garbage.push_back(0x02);
+      (void)!::write(master_, garbage.data(), garbage.size());
     }
     const std::size_t size = kind == 2 ? frame.size() / 2 : frame.size();
     (void)!::write(master_, frame.data(), size);
@@ -98,7 +105,7 @@ MagnetometerDeviceParams readParams(const bus::Scenario& scenario, const vehicle
   auto r = scenario.componentParams(args.name, problems);
   vehicle::refuseMovedKeys(r, {{"q_body_sensor", "spacecraft.sensors.magnetometer.q_body_sensor"}});
   r.read("link", p.link);
-  r.read("baud", p.baud);
+  magnetometer_bridge::readMagnetometerProtocol(scenario, r, problems, p.protocol, p.fields);
   r.read("range_T", p.mounting.range_T, "T");
   r.read("noise_T", p.noise_T, "T");
   r.read("truth_divider", p.truth_divider);

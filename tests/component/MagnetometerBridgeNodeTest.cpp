@@ -32,6 +32,19 @@ using Clock = std::chrono::steady_clock;
 
 constexpr std::uint64_t kGrantedStep = 5;
 
+/// The shipped description (deploy/devices/magnetometer.yaml), as both ends read it.
+void useShippedProtocol(device_protocol::DeviceProtocol& protocol, magnetometer_bridge::MagnetometerFields& fields) {
+  bus::ConfigProblems problems;
+  const auto tesla = [](const std::string&, const std::string&) { return std::optional<std::string>("T"); };
+  protocol = device_protocol::readDeviceProtocol(FLATSAT_SOURCE_DIR "/deploy/devices/magnetometer.yaml", tesla, problems);
+  INFO(problems.joined());
+  REQUIRE(problems.empty());
+  std::string why;
+  const auto found = magnetometer_bridge::MagnetometerFields::of(protocol.frame, why);
+  REQUIRE(found);
+  fields = *found;
+}
+
 /// The field of truth sample i, body axes: a different one each time.
 Eigen::Vector3d fieldAt(int i) { return Eigen::Vector3d(20e-6 + 1e-7 * i, -10e-6, 30e-6 - 2e-7 * i); }
 
@@ -59,10 +72,12 @@ TEST_CASE("magnetometer device and bridge nodes carry the truth field through a 
   magnetometer_device::MagnetometerDeviceParams device_params;
   device_params.mounting.q_body_sensor = mounting;
   device_params.link = link;
+  useShippedProtocol(device_params.protocol, device_params.fields);
   magnetometer_device::MagnetometerDeviceNode device(device_bus, {"magnetometer_device", {}}, device_params);
   magnetometer_bridge::MagnetometerBridgeNodeParams bridge_params;
   bridge_params.bridge.q_body_sensor = mounting;
   bridge_params.device = link;
+  useShippedProtocol(bridge_params.protocol, bridge_params.fields);
   magnetometer_bridge::MagnetometerBridgeNode bridge(bridge_bus, {"magnetometer_bridge", {}}, bridge_params);
   std::thread bridge_thread([&] { bridge.run(); });
 

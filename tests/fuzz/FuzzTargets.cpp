@@ -15,7 +15,8 @@
 #include "bus/Serialization.hpp"
 #include "bus/Topics.hpp"
 #include "components/common/FaultParams.hpp"
-#include "components/magnetometer_bridge/MagnetometerFrame.hpp"
+#include "components/device_protocol/DeviceProtocol.hpp"
+#include "components/device_protocol/FrameCodec.hpp"
 #include "components/unloading_controller/UnloadingControllerNode.hpp"
 
 namespace flatsat::fuzz {
@@ -59,14 +60,20 @@ void scenario(const std::uint8_t* data, std::size_t size) {
 }
 
 void magnetometerFrame(const std::uint8_t* data, std::size_t size) {
-  using namespace magnetometer_bridge;
-  FrameParser parser;
+  static const device_protocol::FrameSpec spec = [] {
+    bus::ConfigProblems problems;
+    const auto any_field = [](const std::string&, const std::string&) { return std::optional<std::string>("T"); };
+    const auto protocol = device_protocol::readDeviceProtocol(FLATSAT_MAGNETOMETER_DEVICE, any_field, problems);
+    if (!problems.empty()) throw std::runtime_error(problems.joined());
+    return protocol.frame;
+  }();
+  device_protocol::FrameParser parser(spec);
   for (std::size_t i = 0; i < size; ++i) {
-    const auto sample = parser.push(data[i]);
-    if (!sample) continue;
-    require(i + 1 >= kFrameSize, "a frame from fewer bytes than a frame");
-    const auto frame = encodeFrame(*sample);
-    require(std::equal(frame.begin(), frame.end(), data + i + 1 - kFrameSize),
+    const auto values = parser.push(data[i]);
+    if (!values) continue;
+    require(i + 1 >= spec.size(), "a frame from fewer bytes than a frame");
+    const auto frame = device_protocol::encodeFrame(spec, *values);
+    require(std::equal(frame.begin(), frame.end(), data + i + 1 - spec.size()),
             "a delivered frame differs from the bytes it came from");
   }
 }

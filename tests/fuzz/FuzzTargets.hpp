@@ -16,8 +16,9 @@ using Entry = void (*)(const std::uint8_t* data, std::size_t size);
 /// The bytes as a scenario file: loadScenario() accepts it or throws
 /// ScenarioError, nothing else.
 void scenario(const std::uint8_t* data, std::size_t size);
-/// The bytes as a serial stream into the magnetometer bridge's FrameParser:
-/// every frame it delivers re-encodes to the 22 bytes it came from.
+/// The bytes as a serial stream into the parser of the magnetometer's description
+/// (deploy/devices/magnetometer.yaml): every frame it delivers re-encodes to the
+/// bytes it came from.
 void magnetometerFrame(const std::uint8_t* data, std::size_t size);
 /// The bytes as a FaultCmd payload: dropped if it does not decode, else the
 /// sensors' command handler (toSensorFault) accepts only a valid fault.

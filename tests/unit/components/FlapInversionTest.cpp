@@ -221,7 +221,7 @@ TEST_CASE("S2 flaps: the seed's closed forms as the solver, off by the small-ang
   seed_params.seed_closed_form = true;
   const FlapInversion exact(exact_params);
   const FlapInversion seed(seed_params);
-  for (const Eigen::Vector2d c : {Eigen::Vector2d(0.02, 0.004), Eigen::Vector2d(-0.01, 0.03), Eigen::Vector2d(0.05, -0.01)}) {
+  for (const Eigen::Vector2d& c : {Eigen::Vector2d(0.02, 0.004), Eigen::Vector2d(-0.01, 0.03), Eigen::Vector2d(0.05, -0.01)}) {
     const FlapSolution e = exact.solve(c);
     const FlapSolution s = seed.solve(c);
     REQUIRE(e.branch != FlapBranch::kUnavailable);

@@ -1,0 +1,51 @@
+// SPDX-License-Identifier: Apache-2.0
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "bus/Params.hpp"
+#include "components/device_protocol/FrameSpec.hpp"
+
+namespace flatsat::device_protocol {
+
+/// The serial line a device speaks on.
+struct LineSettings {
+  std::uint32_t baud = 115200;  // [bit/s] a standard rate, 1200..921600
+  int data_bits = 8;            // [-] 5..8
+  std::string parity = "none";  // none | even | odd
+  int stop_bits = 1;            // [-] 1 or 2
+
+  /// Every violation as "key: reason"; empty when valid.
+  std::vector<std::string> validate() const;
+};
+
+/// A device's protocol as its description file gives it (deploy/devices/*.yaml,
+/// docs/devices.md): the line, the topic its frames carry, and the frame.
+struct DeviceProtocol {
+  std::string file;         // where it was read from
+  std::string name;         // the device, e.g. "magnetometer"
+  std::string topic;        // the bus topic its readings map onto, e.g. "flatsat/magnetometer"
+  std::string sensor_axes;  // vectors arrive in this mounting's axes (spacecraft.sensors.<name>); "" : body
+  LineSettings line;
+  FrameSpec frame;
+};
+
+/// The unit of a topic's field ("b_body_T[0]" → "T"), as bus::ParamReader spells units;
+/// nullopt when the topic has no such field.
+using FieldUnitLookup = std::function<std::optional<std::string>(const std::string& topic, const std::string& field)>;
+
+/// The description file `name`: as given when absolute, else beside the scenario file,
+/// else among the descriptions shipped with the rig (deploy/devices/, installed under
+/// share/flatsat/devices/); `name` itself when none exists.
+std::string findDeviceDescription(const std::string& scenario_file, const std::string& name);
+
+/// Reads and checks a description. Every problem goes to `problems` as
+/// "file:line:col: key: reason" (the field's own line for a field's problem); the
+/// result is meaningful only when none was added.
+DeviceProtocol readDeviceProtocol(const std::string& path, const FieldUnitLookup& unit_of, bus::ConfigProblems& problems);
+
+}  // namespace flatsat::device_protocol
