@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "bus/Bus.hpp"
+#include "bus/LoopbackQos.hpp"
 
 #include <arpa/inet.h>
 #include <ifaddrs.h>
@@ -60,6 +61,8 @@ void addInitialPeers(dds::DomainParticipantQos& qos, std::uint32_t domain,
   }
 }
 
+}  // namespace
+
 /// Transports are set here, in code, from a default-constructed QoS: a
 /// profile named only by FASTRTPS_DEFAULT_PROFILES_FILE cannot widen them.
 /// Discovery is unicast to the metatraffic ports of the first participants
@@ -74,7 +77,7 @@ void addInitialPeers(dds::DomainParticipantQos& qos, std::uint32_t domain,
 /// on purpose, and a peer stopped while it holds a shared-memory port's lock
 /// wedges the others (Fast DDS 2.9.1's 1 s interprocess lock timeout); a
 /// datagram never does.
-dds::DomainParticipantQos loopbackQos(std::uint32_t domain, bool shared_memory, bool acks_over_shm) {
+dds::DomainParticipantQos loopbackParticipantQos(std::uint32_t domain, bool shared_memory, bool acks_over_shm) {
   dds::DomainParticipantQos qos;
   qos.transport().use_builtin_transports = false;
   auto udp = std::make_shared<eprosima::fastdds::rtps::UDPv4TransportDescriptor>();
@@ -95,6 +98,8 @@ dds::DomainParticipantQos loopbackQos(std::uint32_t domain, bool shared_memory, 
   addInitialPeers(qos, domain, {"127.0.0.1"});
   return qos;
 }
+
+namespace {
 
 /// The IPv4 addresses of this host's (this network namespace's) interfaces.
 std::vector<std::string> ownAddresses() {
@@ -268,7 +273,7 @@ Bus::Bus(const BusOptions& options) : options_(options) {
                                 ": must be in 0.." + std::to_string(kMaxDomainId));
   }
   auto qos = options.profile == NetworkProfile::kLoopback
-                 ? loopbackQos(options.domain_id, options.shared_memory, options.acks_over_shm)
+                 ? loopbackParticipantQos(options.domain_id, options.shared_memory, options.acks_over_shm)
              : options.profile == NetworkProfile::kPeers ? peersQos(options.domain_id, options.peers)
              : options.profile == NetworkProfile::kDiscoveryServer
                  ? discoveryServerQos(options.discovery_servers)

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "tools/MiddlewareBench.hpp"
 #include "analysis/Quantile.hpp"
+#include "tools/BenchPeers.hpp"
+#include "tools/PlainGraphBench.hpp"
 
 #include <signal.h>
 #include <spawn.h>
@@ -34,8 +36,6 @@
 #include "bus/TimeMaster.hpp"
 #include "bus/Topics.hpp"
 
-extern char** environ;
-
 namespace flatsat::tools {
 
 using analysis::quantile;
@@ -43,8 +43,6 @@ namespace {
 
 /// The ping's step that tells the echo process to exit.
 constexpr std::uint64_t kStopStep = std::numeric_limits<std::uint64_t>::max();
-/// How long a peer waits for the bench before it gives up (an orphan exits).
-constexpr auto kPeerTimeout = std::chrono::seconds(120);
 /// Round trips before the measured ones: discovery done, caches and the SHM
 /// segments warm.
 constexpr int kWarmupRoundTrips = 200;
@@ -56,11 +54,6 @@ constexpr std::array<const char*, 7> kComponents = {
     "magnetometer", "sun_sensor", "gyro", "star_tracker",
     "estimator",    "attitude_controller", "unloading_controller"};
 
-/// The bench's domains D and D+1, from its pid as tests/support/TestDomain.hpp
-/// derives a test's, so parallel benches and tests do not see each other:
-/// D is even in 10..228, D+1 stays under the port formula's cap (232).
-std::uint32_t benchDomain() { return 10 + static_cast<std::uint32_t>(::getpid()) % 110 * 2; }
-
 /// The rig's default network as a lockstep rig's components have it:
 /// loopback UDP + SHM, unicast discovery, acknowledgements through shared
 /// memory as well (bus/Bus.cpp).
@@ -68,46 +61,6 @@ bus::BusOptions loopback(std::uint32_t domain, const std::string& name) {
   return {.domain_id = domain, .profile = bus::NetworkProfile::kLoopback, .participant_name = name,
           .acks_over_shm = true};
 }
-
-/// Peer processes: this very flatsat binary with a hidden subcommand. Any
-/// not joined when this goes away (the bench failed) is stopped and reaped.
-class Peers {
- public:
-  Peers() = default;
-  Peers(const Peers&) = delete;
-  Peers& operator=(const Peers&) = delete;
-  ~Peers() {
-    for (const pid_t pid : pids_) {
-      ::kill(pid, SIGTERM);
-      ::waitpid(pid, nullptr, 0);
-    }
-  }
-  void start(std::vector<std::string> args) {
-    args.insert(args.begin(), "flatsat");
-    std::vector<char*> argv;
-    for (auto& arg : args) argv.push_back(arg.data());
-    argv.push_back(nullptr);
-    pid_t pid = 0;
-    const int rc = ::posix_spawn(&pid, "/proc/self/exe", nullptr, nullptr, argv.data(), environ);
-    if (rc != 0) throw std::runtime_error("could not start flatsat " + args[1] + ": " + std::strerror(rc));
-    pids_.push_back(pid);
-  }
-  /// Waits for every peer to exit; throws when one failed.
-  void join() {
-    std::string failed;
-    while (!pids_.empty()) {
-      int status = 0;
-      const pid_t pid = pids_.back();
-      ::waitpid(pid, &status, 0);
-      pids_.pop_back();
-      if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) failed.append(" ").append(std::to_string(pid));
-    }
-    if (!failed.empty()) throw std::runtime_error("bench peer process(es) failed:" + failed);
-  }
-
- private:
-  std::vector<pid_t> pids_;
-};
 
 struct Hop {
   double p50_us;  ///< [µs] median one-way
@@ -341,10 +294,12 @@ double measureLimitStepsPerSecond(bool quick) {
 
 double printMiddlewareBench(bool quick, bool* all_measured) {
   const bool hop = printHopBench(quick);
+  const double plain = measurePlainGraphStepsPerSecond(quick);
+  std::printf("plain_graph_steps_per_s=%.1f\n", plain);  // nan when it failed
   const double limit = measureLimitStepsPerSecond(quick);
-  std::printf("limit_steps_per_s=%.1f\n", limit);  // nan when it failed
+  std::printf("limit_steps_per_s=%.1f\n", limit);
   std::fflush(stdout);
-  if (all_measured != nullptr) *all_measured = hop && std::isfinite(limit);
+  if (all_measured != nullptr) *all_measured = hop && std::isfinite(limit) && std::isfinite(plain);
   return limit;
 }
 
@@ -360,7 +315,15 @@ std::vector<CLI::App*> addBenchPeerCommands(CLI::App& app, int& exit_code) {
       CLI::IsMember(std::vector<std::string>(kComponents.begin(), kComponents.end())));
   node->add_option("--domain", *domain, "domain")->required()->check(CLI::Range(0, 232));
   node->callback([domain, role, &exit_code] { exit_code = runComponent(*role, *domain); });
-  return {echo, node};
+  auto steps = std::make_shared<std::uint64_t>(0);
+  auto* plain = app.add_subcommand("bench-plain", "flatsat bench's plain-graph node")->group("");
+  plain->add_option("role", *role, "node")->required()->check([](const std::string& r) {
+    return isPlainRole(r) ? std::string() : "no plain-graph node '" + r + "'";
+  });
+  plain->add_option("--domain", *domain, "domain")->required()->check(CLI::Range(0, 232));
+  plain->add_option("--steps", *steps, "last step")->required();
+  plain->callback([domain, role, steps, &exit_code] { exit_code = runPlainNode(*role, *domain, *steps); });
+  return {echo, node, plain};
 }
 
 }  // namespace flatsat::tools

@@ -13,6 +13,8 @@ namespace flatsat::tools {
 /// topics and QoS, between separate flatsat processes:
 ///   hop_us, hop_us_p99  one-way latency of a TruthState sample, RTT/2 of a
 ///                       ping-pong with an echo process (median, 99th percentile)
+///   plain_graph_steps_per_s  the same shape on Fast DDS directly, no step protocol
+///                       (PlainGraphBench.hpp): what the middleware allows
 ///   limit_steps_per_s   the bare lockstep graph of the rig's shape (time master →
 ///                       4 sensors → estimator → 2 controllers → master, no models,
 ///                       no recorder) as 8 processes

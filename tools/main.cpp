@@ -33,6 +33,7 @@
 #include "rig/Launcher.hpp"
 #include "tools/McCommand.hpp"
 #include "tools/MiddlewareBench.hpp"
+#include "tools/PlainGraphBench.hpp"
 #include "tools/OrbitCommand.hpp"
 #include "tools/PhysicsBench.hpp"
 #include "tools/PlotCommand.hpp"
@@ -518,8 +519,9 @@ int bench(const std::string& scenario, double duration_s, bool quick) {
   o.plots = false;
   o.log_level = "warn";
   nlohmann::ordered_json summary;
-  std::vector<double> limits, locksteps, startups;
+  std::vector<double> plains, limits, locksteps, startups;
   for (int i = 0; i < kRunsPerFigure; ++i) {
+    plains.push_back(tools::measurePlainGraphStepsPerSecond(quick));
     limits.push_back(tools::measureLimitStepsPerSecond(quick));
     if (const int rc = run(o, &summary); rc != 0) return rc;
     locksteps.push_back(summary["steps_per_second"].get<double>());
@@ -528,8 +530,11 @@ int bench(const std::string& scenario, double duration_s, bool quick) {
     startups.push_back(1e3 * summary["startup_seconds"].get<double>());
     fs::remove_all(out);
   }
+  const double plain = analysis::quantile(plains, 0.5);
   const double limit = analysis::quantile(limits, 0.5);
   const double lockstep = analysis::quantile(locksteps, 0.5);
+  std::printf("plain_graph_steps_per_s=%.1f\n", plain);
+  std::printf("plain_graph_steps_per_s_runs=%s\n", joined(plains).c_str());
   std::printf("limit_steps_per_s=%.1f\n", limit);
   std::printf("limit_steps_per_s_runs=%s\n", joined(limits).c_str());
   std::printf("scenario=%s\n", summary["scenario"].get<std::string>().c_str());
@@ -539,6 +544,8 @@ int bench(const std::string& scenario, double duration_s, bool quick) {
   std::printf("lockstep_steps_per_s_runs=%s\n", joined(locksteps).c_str());
   // The target: the rig should reach >= 0.75 of the bare graph's rate.
   std::printf("lockstep_fraction_of_limit=%.3f\n", lockstep / limit);
+  // Issue 36's target: >= 0.75 of what plain Fast DDS gives the same graph.
+  std::printf("lockstep_fraction_of_plain=%.3f\n", lockstep / plain);
   std::printf("speed_factor=%.1f\n", lockstep * loaded.step_s);
   std::printf("startup_ms=%.0f\n", analysis::quantile(startups, 0.5));
   // The same scenario composed into one process, its recording decimated to
@@ -628,7 +635,7 @@ int main(int argc, char** argv) {
   bench_cmd->add_flag("--quick", bench_quick, "the paced run lasts 30 s instead of 60 s, fewer hops and bare-graph steps");
   bool bench_middleware = false;
   bench_cmd->add_flag("--middleware", bench_middleware,
-                      "only the middleware figures: hop_us, hop_us_p99, limit_steps_per_s");
+                      "only the middleware figures: hop_us, hop_us_p99, plain_graph_steps_per_s, limit_steps_per_s");
   bool bench_resume = false;
   bench_cmd->add_flag("--resume", bench_resume,
                       "only the resume figures: a run recorded, then re-checked by --resume (resume_*)");

@@ -29,7 +29,7 @@ std::map<std::string, double> keyValues(const std::string& output) {
 
 }  // namespace
 
-TEST_CASE("bench --middleware measures the hop and the bare lockstep graph", "[system][bench]") {
+TEST_CASE("bench --middleware measures the hop, the plain graph and the bare lockstep graph", "[system][bench]") {
   const auto result = test::runCommand(kFlatsat + " bench --quick --middleware");
   INFO(result.output);
   REQUIRE(result.exit_code == 0);
@@ -37,8 +37,10 @@ TEST_CASE("bench --middleware measures the hop and the bare lockstep graph", "[s
   REQUIRE(values.count("hop_us") == 1);
   REQUIRE(values.count("hop_us_p99") == 1);
   REQUIRE(values.count("limit_steps_per_s") == 1);
+  REQUIRE(values.count("plain_graph_steps_per_s") == 1);
   const double hop_us = values.at("hop_us");
   const double limit = values.at("limit_steps_per_s");
+  const double plain = values.at("plain_graph_steps_per_s");
   // A loopback hop takes microseconds to milliseconds, never nothing.
   CHECK(hop_us > 1.0);
   CHECK(hop_us < 10'000.0);
@@ -47,4 +49,7 @@ TEST_CASE("bench --middleware measures the hop and the bare lockstep graph", "[s
   // Each step passes master -> sensor -> estimator -> controller -> master in
   // sequence: at least four hops, two here to leave room for a noisy machine.
   CHECK(1e6 / limit > 2.0 * hop_us);
+  // The same graph on plain Fast DDS: the same four hops a step, whatever the protocol.
+  CHECK(plain > 0.0);
+  CHECK(1e6 / plain > 2.0 * hop_us);
 }
