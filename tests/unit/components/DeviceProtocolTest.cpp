@@ -227,51 +227,31 @@ TEST_CASE("a bad device description is refused at its own line, with the reason"
     return problems.joined();
   };
   const std::string crc = "{poly: 0x1021, init: 0xFFFF, at: 8, covers_from: 2}";
-  const std::string ok = problemsOf("ok.yaml",
-                                    "    - {name: type, at: 2, type: u8, const: 1}\n"
-                                    "    - {name: bx, at: 3, type: i32, scale: 1 nT, to: \"b_body_T[0]\"}\n"
-                                    "    - {name: pad, at: 7, type: u8}\n",
-                                    crc);
-  CHECK(ok.empty());
-  const std::string overlap = problemsOf("overlap.yaml",
-                                         "    - {name: type, at: 2, type: u8, const: 1}\n"
-                                         "    - {name: bx, at: 3, type: i32, scale: 1 nT, to: \"b_body_T[0]\"}\n"
-                                         "    - {name: by, at: 5, type: u16, scale: 1 nT, to: \"b_body_T[1]\"}\n",
-                                         crc);
+  const std::string good =  // lines 7 to 9
+      "    - {name: type, at: 2, type: u8, const: 1}\n"
+      "    - {name: bx, at: 3, type: i32, scale: 1 nT, to: \"b_body_T[0]\"}\n"
+      "    - {name: pad, at: 7, type: u8}\n";
+  const auto changed = [&](const std::string& from, const std::string& to) {
+    std::string text = good;
+    return text.replace(text.find(from), from.size(), to);
+  };
+  CHECK(problemsOf("ok.yaml", good, crc).empty());
+  const std::string overlap = problemsOf("overlap.yaml", changed("{name: pad, at: 7, type: u8}", "{name: by, at: 5, type: u16}"), crc);
   CHECK_THAT(overlap, Catch::Contains("overlap.yaml:9:") && Catch::Contains("field 'by' (bytes 5..6) overlaps field 'bx'"));
-  const std::string unknown_type = problemsOf("type.yaml",
-                                              "    - {name: type, at: 2, type: u8, const: 1}\n"
-                                              "    - {name: bx, at: 3, type: int24, scale: 1 nT, to: \"b_body_T[0]\"}\n",
-                                              crc);
+  const std::string unknown_type = problemsOf("type.yaml", changed("type: i32", "type: int24"), crc);
   CHECK_THAT(unknown_type, Catch::Contains("type.yaml:8:") && Catch::Contains("frame.fields[1].type: 'int24' is not u8"));
-  const std::string uncovered = problemsOf("covers.yaml",
-                                           "    - {name: type, at: 2, type: u8, const: 1}\n"
-                                           "    - {name: bx, at: 3, type: i32, scale: 1 nT, to: \"b_body_T[0]\"}\n"
-                                           "    - {name: pad, at: 7, type: u8}\n",
-                                           "{poly: 0x1021, init: 0xFFFF, at: 8, covers_from: 3}");
+  const std::string uncovered = problemsOf("covers.yaml", good, "{poly: 0x1021, init: 0xFFFF, at: 8, covers_from: 3}");
   CHECK_THAT(uncovered, Catch::Contains("covers.yaml:10:") && Catch::Contains("it must cover every byte from 2"));
-  const std::string unit = problemsOf("unit.yaml",
-                                      "    - {name: type, at: 2, type: u8, const: 1}\n"
-                                      "    - {name: bx, at: 3, type: i32, scale: 0.01 deg, to: \"b_body_T[0]\"}\n"
-                                      "    - {name: pad, at: 7, type: u8}\n",
-                                      crc);
+  const std::string unit = problemsOf("unit.yaml", changed("scale: 1 nT", "scale: 0.01 deg"), crc);
   CHECK_THAT(unit, Catch::Contains("unit.yaml:8:") && Catch::Contains("frame.fields[1].scale"));
-  const std::string gap = problemsOf("gap.yaml",
-                                     "    - {name: type, at: 2, type: u8, const: 1}\n"
-                                     "    - {name: bx, at: 3, type: i32, scale: 1 nT, to: \"b_body_T[0]\"}\n",
-                                     crc);
+  const std::string gap = problemsOf("gap.yaml", changed("    - {name: pad, at: 7, type: u8}\n", ""), crc);
   CHECK_THAT(gap, Catch::Contains("byte 7 belongs to no field"));
-  const std::string wrong_check = problemsOf("check.yaml",
-                                             "    - {name: type, at: 2, type: u8, const: 1}\n"
-                                             "    - {name: bx, at: 3, type: i32, scale: 1 nT, to: \"b_body_T[0]\"}\n"
-                                             "    - {name: pad, at: 7, type: u8}\n",
-                                             "{poly: 0x1021, init: 0x0000, at: 8, covers_from: 2, check: 0x29B1}");
+  const std::string wrong_check =
+      problemsOf("check.yaml", good, "{poly: 0x1021, init: 0x0000, at: 8, covers_from: 2, check: 0x29B1}");
   CHECK_THAT(wrong_check, Catch::Contains("frame.checksum.check: the parameters give another check value"));
-  const std::string elsewhere = problemsOf("field.yaml",
-                                           "    - {name: type, at: 2, type: u8, const: 300}\n"
-                                           "    - {name: bx, at: 3, type: i32, scale: 1 nT, to: \"b_body_X[0]\"}\n"
-                                           "    - {name: pad, at: 7, type: u8}\n",
-                                           crc);
+  std::string misnamed = changed("const: 1}", "const: 300}");
+  misnamed.replace(misnamed.find("b_body_T"), 8, "b_body_X");
+  const std::string elsewhere = problemsOf("field.yaml", misnamed, crc);
   CHECK_THAT(elsewhere, Catch::Contains("frame.fields[0].const: does not fit") &&
                             Catch::Contains("'b_body_X[0]' is not a field of flatsat/magnetometer"));
   bus::ConfigProblems missing;
