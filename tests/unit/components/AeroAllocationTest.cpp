@@ -12,6 +12,7 @@
 
 using flatsat::unloading_controller::AeroAllocation;
 using flatsat::unloading_controller::AeroAllocationInput;
+using flatsat::unloading_controller::AeroAllocationOutput;
 using flatsat::unloading_controller::AeroAllocationParams;
 using flatsat::unloading_controller::AeroSplit;
 using flatsat::unloading_controller::FlapInversion;
@@ -36,18 +37,32 @@ Eigen::Vector3d field(std::mt19937& rng) {
   return 3e-5 * Eigen::Vector3d(std::cos(a), out(rng), 2.0 * std::sin(a)).normalized();
 }
 
+/// A random demand (20 µN m per axis, 1σ) in field b, with the air of kFlapScale_Nm.
+AeroAllocationInput demandIn(const Eigen::Vector3d& b_B_T, std::mt19937& rng) {
+  std::normal_distribution<double> n(0.0, 1.0);
+  AeroAllocationInput in;
+  in.b_B_T = b_B_T;
+  in.c_demand_B_Nm = 2e-5 * Eigen::Vector3d(n(rng), n(rng), n(rng));
+  in.flap_scale_Nm = kFlapScale_Nm;
+  return in;
+}
+
+/// The coils' M × B and the plant's flap torque `c_aero` together give the demand, M ⟂ B (eq. I).
+void checkDemandMet(const AeroAllocationInput& in, const AeroAllocationOutput& out, const Eigen::Vector3d& c_aero) {
+  const Eigen::Vector3d& B = in.b_B_T;
+  const Eigen::Vector3d& C = in.c_demand_B_Nm;
+  CHECK((out.m_B_Am2.cross(B) + c_aero - C).norm() < 1e-9 * C.norm());
+  CHECK(std::abs(out.m_B_Am2.dot(B)) < 1e-12 * out.m_B_Am2.norm() * B.norm());
+}
+
 }  // namespace
 
 TEST_CASE("S2 split: coils and flaps together give the demanded torque with the least flap torque",
           "[unloading_controller][unit][s2]") {
   const AeroAllocation split(wide(AeroSplit::kMagneticAero));
   std::mt19937 rng(7);
-  std::normal_distribution<double> n(0.0, 1.0);
   for (int k = 0; k < 2000; ++k) {
-    AeroAllocationInput in;
-    in.b_B_T = field(rng);
-    in.c_demand_B_Nm = 2e-5 * Eigen::Vector3d(n(rng), n(rng), n(rng));
-    in.flap_scale_Nm = kFlapScale_Nm;
+    const AeroAllocationInput in = demandIn(field(rng), rng);
     const auto out = split.step(in, 0);
     REQUIRE(out.delivered == 1.0);
     const Eigen::Vector3d& B = in.b_B_T;
@@ -55,8 +70,7 @@ TEST_CASE("S2 split: coils and flaps together give the demanded torque with the 
     // The flaps' torque is what the plant's flap model gives for the commanded angles.
     const Eigen::Vector2d c = sim::Flaps::normalisedTorques(out.flaps.theta_rad);
     const Eigen::Vector3d c_aero = kFlapScale_Nm * Eigen::Vector3d(c(0), 0.0, c(1));
-    CHECK((out.m_B_Am2.cross(B) + c_aero - C).norm() < 1e-9 * C.norm());
-    CHECK(std::abs(out.m_B_Am2.dot(B)) < 1e-12 * out.m_B_Am2.norm() * B.norm());  // M ⟂ B (eq. I)
+    checkDemandMet(in, out, c_aero);
     // Any flap torque (a, 0, b) that completes C has (a, 0, b)·B = C·B; the least of them has
     // norm |C·B|/√(Bx² + Bz²), >= the component of C along B, equal when By = 0.
     const double along_B = std::abs(C.dot(B)) / B.norm();
@@ -81,14 +95,10 @@ TEST_CASE("S2 split on an equatorial orbit (claim 8): the flaps give roll and pi
   p.wings = sim::FlapWings::kAlongZ;
   const AeroAllocation split(p);
   std::mt19937 rng(13);
-  std::normal_distribution<double> n(0.0, 1.0);
   std::uniform_real_distribution<double> tilt(-0.35, 0.35);
   for (int k = 0; k < 2000; ++k) {
-    AeroAllocationInput in;
     // The field near the equator: along the orbit normal (pitch), tilted by up to ~20°.
-    in.b_B_T = 3e-5 * Eigen::Vector3d(tilt(rng), -1.0, tilt(rng)).normalized();
-    in.c_demand_B_Nm = 2e-5 * Eigen::Vector3d(n(rng), n(rng), n(rng));
-    in.flap_scale_Nm = kFlapScale_Nm;
+    const AeroAllocationInput in = demandIn(3e-5 * Eigen::Vector3d(tilt(rng), -1.0, tilt(rng)).normalized(), rng);
     const auto out = split.step(in, 0);
     REQUIRE(out.delivered == 1.0);
     const Eigen::Vector3d& B = in.b_B_T;
@@ -96,8 +106,7 @@ TEST_CASE("S2 split on an equatorial orbit (claim 8): the flaps give roll and pi
     // The plant's torque for these angles with the wings along z: K (c_ax, −c_az, 0).
     const Eigen::Vector2d c = sim::Flaps::normalisedTorques(out.flaps.theta_rad);
     const Eigen::Vector3d c_aero = kFlapScale_Nm * Eigen::Vector3d(c(0), -c(1), 0.0);
-    CHECK((out.m_B_Am2.cross(B) + c_aero - C).norm() < 1e-9 * C.norm());
-    CHECK(std::abs(out.m_B_Am2.dot(B)) < 1e-12 * out.m_B_Am2.norm() * B.norm());
+    checkDemandMet(in, out, c_aero);
     // The least roll–pitch torque that completes C: (a, b, 0)·B = C·B, norm |C·B|/√(Bx² + By²).
     CHECK(c_aero.norm() == Approx(std::abs(C.dot(B)) / std::hypot(B.x(), B.y())).epsilon(1e-9));
     CHECK(out.c_aero_B_Nm.isApprox(c_aero, 1e-9));
