@@ -37,12 +37,13 @@ Eigen::Vector3d field(std::mt19937& rng) {
   return 3e-5 * Eigen::Vector3d(std::cos(a), out(rng), 2.0 * std::sin(a)).normalized();
 }
 
-/// A random demand (20 µN m per axis, 1σ) in field b, with the air of kFlapScale_Nm.
+/// A random demand (10 µN m per axis, 1σ) in field b, with the air of kFlapScale_Nm: within
+/// the flaps' reach (K = 100 µN m, |c| up to about 1), so that all of it is delivered.
 AeroAllocationInput demandIn(const Eigen::Vector3d& b_B_T, std::mt19937& rng) {
   std::normal_distribution<double> n(0.0, 1.0);
   AeroAllocationInput in;
   in.b_B_T = b_B_T;
-  in.c_demand_B_Nm = 2e-5 * Eigen::Vector3d(n(rng), n(rng), n(rng));
+  in.c_demand_B_Nm = 1e-5 * Eigen::Vector3d(n(rng), n(rng), n(rng));
   in.flap_scale_Nm = kFlapScale_Nm;
   return in;
 }
