@@ -71,7 +71,11 @@ void summarizeAeroUnloading(const bus::Scenario& scenario, const bus::Recording&
                       delivered += cmd.delivered();
                       aero += shown->second.tau_flaps_B_Nm.norm();
                       along_B += std::abs(C.dot(B)) / B.norm();
-                      least += std::abs(C.dot(B)) / unloading_controller::fieldInFlapPlane_B(B, wings).norm();
+                      // With B all but normal to the flaps' plane no flap torque completes C:
+                      // such steps count for neither ratio's floor.
+                      const double plant_in_plane = unloading_controller::fieldInFlapPlane_B(B, wings).norm();
+                      least += plant_in_plane >= node.modes.aero->min_field_T ? std::abs(C.dot(B)) / plant_in_plane
+                                                                              : std::abs(C.dot(B)) / B.norm();
                       const double K = cmd.flap_scale_Nm();
                       drag += K * unloading_controller::FlapInversion::dragShape(bus::vec4(cmd.theta_rad()));
                       // The flaps' share the split asked for (eq. II), as delivered, against the

@@ -2,6 +2,7 @@
 #include "bus/Params.hpp"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <numbers>
 #include <sstream>
@@ -293,8 +294,9 @@ void ParamReader::read(const std::string& key, std::uint64_t& value) {
   if (!node.IsDefined() || node.IsNull()) return;
   const std::string text = node.IsScalar() ? node.Scalar() : "";
   char* end = nullptr;
+  errno = 0;
   const auto v = std::strtoull(text.c_str(), &end, 10);
-  if (text.empty() || *end != '\0' || text[0] == '-') {
+  if (text.empty() || *end != '\0' || text[0] == '-' || errno == ERANGE) {
     return problem(key, "expected a non-negative integer, got '" + text + "'");
   }
   value = v;

@@ -9,8 +9,8 @@
 namespace flatsat::sim {
 namespace {
 
-// Plate i (0-based here, 1-based in the seed) sits on the +y wing for seed
-// numbers 1 and 3, on the −y wing for 2 and 4.
+// Plate i (0-based here, 1-based in the seed) sits on the + wing (+y, or +z with the
+// wings along z) for seed numbers 1 and 3, on the − wing for 2 and 4.
 constexpr double wingSign(int i) { return i % 2 == 0 ? 1.0 : -1.0; }
 
 /// The along-y layout → the body: a quarter turn about x for wings along z.

@@ -264,9 +264,11 @@ void readOnboard(const bus::Scenario& scenario, bus::ParamReader onboard, const 
     readElements(orbit, v.orbit);
     orbit.finish();
   }
+  bool spot_model = false;  // asked for, whether or not it loaded
   if (onboard.has("field_model") || onboard.has("field_epoch_utc")) {
     std::string model = truth_model;
     onboard.read("field_model", model);
+    spot_model = model == "spot";
     // A table loaded then and never updated: its secular variation stops there.
     sim::UtcEpoch coefficients_epoch = v.epoch;
     std::string coefficients_date;
@@ -283,7 +285,7 @@ void readOnboard(const bus::Scenario& scenario, bus::ParamReader onboard, const 
     loadField(scenario, onboard, "field_model", model, named_by_environment, coefficients_epoch, true, v.field);
     readSpotHarmonics(scenario, onboard, files, sim::decimalYear(coefficients_epoch), v);
   }
-  if (onboard.has("spot_harmonics") && !v.field.spot) {
+  if (onboard.has("spot_harmonics") && !spot_model) {
     std::string unused;
     onboard.read("spot_harmonics", unused);
     onboard.problem("spot_harmonics", "only with field_model: spot");

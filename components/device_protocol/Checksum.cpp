@@ -37,9 +37,11 @@ std::vector<std::string> ChecksumSpec::validate() const {
   std::vector<std::string> errors;
   if (kind != Kind::kCrc) {
     if (width_bits != 8) errors.push_back("width_bits: " + std::to_string(width_bits) + " must be 8 for sum8 and xor8");
+    if (init > 0xFFu) errors.push_back("init: " + hexText(init) + " does not fit 8 bits");
+    if (xor_out > 0xFFu) errors.push_back("xor_out: " + hexText(xor_out) + " does not fit 8 bits");
     return errors;
   }
-  if (width_bits != 8 && width_bits != 16 && width_bits != 32) {
+  if (width_bits != 8 && width_bits != 16 && width_bits != 32) {  // also keeps bytes() > 0
     errors.push_back("width_bits: " + std::to_string(width_bits) + " must be 8, 16 or 32");
     return errors;
   }
@@ -55,9 +57,10 @@ std::vector<std::string> ChecksumSpec::validate() const {
 
 std::uint32_t computeChecksum(const ChecksumSpec& spec, std::span<const std::uint8_t> bytes) {
   if (spec.kind == ChecksumSpec::Kind::kSum8 || spec.kind == ChecksumSpec::Kind::kXor8) {
-    std::uint32_t value = 0;
+    // init and xor_out as for a CRC: "~sum" devices send the sum's complement (xor_out 0xFF).
+    std::uint32_t value = spec.init;
     for (const std::uint8_t byte : bytes) value = spec.kind == ChecksumSpec::Kind::kSum8 ? value + byte : value ^ byte;
-    return value & 0xFFu;
+    return (value ^ spec.xor_out) & 0xFFu;
   }
   // Bit by bit, most significant first: a few dozen bytes per frame at serial rates.
   const int width = spec.width_bits;

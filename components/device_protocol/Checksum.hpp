@@ -16,11 +16,11 @@ struct ChecksumSpec {
   enum class Kind { kCrc, kSum8, kXor8 };
   Kind kind = Kind::kCrc;
   int width_bits = 16;           // [-] CRC: 8, 16 or 32; sum8 and xor8: 8
-  std::uint32_t poly = 0x1021;   // [-] CRC generator, normal form, top bit left out; odd
-  std::uint32_t init = 0xFFFF;   // [-] register before the first byte, < 2^width
-  bool reflect_in = false;       // [-] bytes enter least significant bit first
-  bool reflect_out = false;      // [-] the register is reflected before xor_out
-  std::uint32_t xor_out = 0;     // [-] xored into the result, < 2^width
+  std::uint32_t poly = 0x1021;   // [-] CRC only: generator, normal form, top bit left out; odd
+  std::uint32_t init = 0xFFFF;   // [-] register before the first byte (sum8, xor8: the start value), < 2^width
+  bool reflect_in = false;       // [-] CRC only: bytes enter least significant bit first
+  bool reflect_out = false;      // [-] CRC only: the register is reflected before xor_out
+  std::uint32_t xor_out = 0;     // [-] xored into the result (also sum8, xor8), < 2^width
 
   int bytes() const { return width_bits / 8; }
   /// Every violation as "key: reason"; empty when valid.

@@ -65,13 +65,21 @@ void readChecksum(bus::ParamReader& c, FrameSpec& frame) {
   } else {
     c.problem("kind", "'" + kind + "' is not crc, sum8 or xor8");
   }
-  if (frame.checksum.kind != ChecksumSpec::Kind::kCrc) frame.checksum.width_bits = 8;
-  c.read("width_bits", frame.checksum.width_bits);
   constexpr long long kWord = 0xFFFFFFFFLL;
-  readWord(c, "poly", frame.checksum.poly, 0, kWord);
+  if (frame.checksum.kind != ChecksumSpec::Kind::kCrc) {
+    frame.checksum.width_bits = 8;
+    frame.checksum.init = 0;
+    for (const char* key : {"poly", "reflect_in", "reflect_out"}) {
+      if (c.has(key)) c.problem(key, "a CRC's parameter: " + kind + " has none");
+    }
+    c.leave({"poly", "reflect_in", "reflect_out"});  // reported above, not again as unknown
+  } else {
+    readWord(c, "poly", frame.checksum.poly, 0, kWord);
+    c.read("reflect_in", frame.checksum.reflect_in);
+    c.read("reflect_out", frame.checksum.reflect_out);
+  }
+  c.read("width_bits", frame.checksum.width_bits);
   readWord(c, "init", frame.checksum.init, 0, kWord);
-  c.read("reflect_in", frame.checksum.reflect_in);
-  c.read("reflect_out", frame.checksum.reflect_out);
   readWord(c, "xor_out", frame.checksum.xor_out, 0, kWord);
   std::uint64_t at = 0, from = 0;
   c.read("at", at);
@@ -141,7 +149,8 @@ std::vector<std::string> LineSettings::validate() const {
   static const std::set<std::uint32_t> kRates = {1200, 2400, 4800, 9600, 19200, 38400, 57600, 115200, 230400, 460800, 921600};
   std::vector<std::string> errors;
   if (!kRates.count(baud)) errors.push_back("baud: " + std::to_string(baud) + " is not a standard rate (1200 .. 921600)");
-  if (data_bits < 5 || data_bits > 8) errors.push_back("data_bits: " + std::to_string(data_bits) + " not in 5..8");
+  // A binary frame's bytes need all 8 bits: with fewer the UART drops the top one.
+  if (data_bits != 8) errors.push_back("data_bits: " + std::to_string(data_bits) + " must be 8 for binary frames");
   if (parity != "none" && parity != "even" && parity != "odd") errors.push_back("parity: '" + parity + "' is not none, even or odd");
   if (stop_bits != 1 && stop_bits != 2) errors.push_back("stop_bits: " + std::to_string(stop_bits) + " is neither 1 nor 2");
   return errors;

@@ -15,7 +15,7 @@ namespace flatsat::device_protocol {
 /// The serial line a device speaks on.
 struct LineSettings {
   std::uint32_t baud = 115200;  // [bit/s] a standard rate, 1200..921600
-  int data_bits = 8;            // [-] 5..8
+  int data_bits = 8;            // [-] 8: binary frames need every bit
   std::string parity = "none";  // none | even | odd
   int stop_bits = 1;            // [-] 1 or 2
 

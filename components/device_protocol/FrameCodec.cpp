@@ -5,6 +5,9 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <limits>
+#include <stdexcept>
+#include <string>
 #include <span>
 
 namespace flatsat::device_protocol {
@@ -56,14 +59,20 @@ double decodeField(const FieldSpec& field, const std::uint8_t* frame) {
 }
 
 std::vector<std::uint8_t> encodeFrame(const FrameSpec& spec, const RawValues& raw) {
+  if (raw.size() != spec.fields.size()) {
+    throw std::invalid_argument("encodeFrame: " + std::to_string(raw.size()) + " values for " +
+                                std::to_string(spec.fields.size()) + " fields of frame '" + spec.name + "'");
+  }
   std::vector<std::uint8_t> frame(spec.size(), 0);
   std::copy(spec.sync.begin(), spec.sync.end(), frame.begin());
   for (std::size_t i = 0; i < spec.fields.size(); ++i) {
     const FieldSpec& f = spec.fields[i];
-    const double value = f.constant ? *f.constant : (i < raw.size() ? raw[i] : 0.0);
+    const double value = f.constant ? *f.constant : raw[i];
     std::uint64_t bits = 0;
     if (f.type == FieldType::kF32) {
-      bits = std::bit_cast<std::uint32_t>(static_cast<float>(value));
+      constexpr double kFloatMax = std::numeric_limits<float>::max();
+      const double held = std::isfinite(value) ? std::clamp(value, -kFloatMax, kFloatMax) : value;
+      bits = std::bit_cast<std::uint32_t>(static_cast<float>(held));
     } else if (f.type == FieldType::kF64) {
       bits = std::bit_cast<std::uint64_t>(value);
     } else {
@@ -78,7 +87,12 @@ std::vector<std::uint8_t> encodeFrame(const FrameSpec& spec, const RawValues& ra
   return frame;
 }
 
-FrameParser::FrameParser(FrameSpec spec) : spec_(std::move(spec)), buffer_(spec_.size()), values_(spec_.fields.size()) {
+FrameParser::FrameParser(FrameSpec spec) : spec_(std::move(spec)), values_(spec_.fields.size()) {
+  if (const auto problems = spec_.validate(); !problems.empty()) {
+    throw std::invalid_argument("FrameParser: frame '" + spec_.name + "': " + problems.front().key + ": " +
+                                problems.front().reason);
+  }
+  buffer_.resize(spec_.size());
   for (std::size_t i = 0; i < spec_.fields.size(); ++i) {
     if (spec_.fields[i].constant) header_fields_.push_back(i);
   }

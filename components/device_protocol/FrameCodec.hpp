@@ -22,18 +22,19 @@ struct ParserCounts {
 };
 
 /// Streaming parser for one frame description: feed bytes as they come off the line,
-/// whole valid frames come out. A rejected candidate drops one byte and the search goes
-/// on from the next, so a frame that starts inside a corrupted one is still found.
+/// whole valid frames come out. A candidate with a wrong header or check drops one byte
+/// and the search goes on from the next, so a frame that starts inside a corrupted one is
+/// still found. A frame whose check passes but which carries a non-finite float is a
+/// faulty device's, whole: it is dropped entire and counted (bad_value).
 /// Allocates only for the values of a frame it delivers; any byte sequence is safe.
 class FrameParser {
  public:
-  /// The spec must be valid (FrameSpec::validate() empty).
+  /// @throws std::invalid_argument when the spec is not valid (FrameSpec::validate()).
   explicit FrameParser(FrameSpec spec);
 
   /// Consumes one byte; returns the field values when it completes a valid frame.
   std::optional<RawValues> push(std::uint8_t byte);
   const ParserCounts& counts() const { return counts_; }
-  const FrameSpec& spec() const { return spec_; }
 
  private:
   void dropFirst(std::size_t n);
@@ -48,8 +49,8 @@ class FrameParser {
 };
 
 /// The bytes of one frame: sync, each field from `raw` (header constants from the spec;
-/// integers rounded to the nearest count and held to their type's range), the check.
-/// `raw` has one value per field.
+/// integers rounded to the nearest count and held to their type's range, f32 held to
+/// ±FLT_MAX), the check. @throws std::invalid_argument unless `raw` has one value per field.
 std::vector<std::uint8_t> encodeFrame(const FrameSpec& spec, const RawValues& raw);
 
 /// One field's value read from a whole frame.

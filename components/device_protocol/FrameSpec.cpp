@@ -13,15 +13,18 @@ std::string byteRange(std::size_t from, std::size_t to) {
   return "bytes " + std::to_string(from) + ".." + std::to_string(to - 1);
 }
 
-/// The range of whole counts a type holds (floats: any finite value).
+/// The range of whole counts a type holds; a float type, the values it holds exactly (a
+/// header constant is compared as it arrives).
 bool fitsType(FieldType type, double value) {
   if (!std::isfinite(value)) return false;
-  if (!isInteger(type)) return type == FieldType::kF64 || std::abs(value) <= std::numeric_limits<float>::max();
+  if (type == FieldType::kF64) return true;
+  if (type == FieldType::kF32) {
+    return std::abs(value) <= std::numeric_limits<float>::max() && static_cast<double>(static_cast<float>(value)) == value;
+  }
   if (value != std::floor(value)) return false;
   const double bits = 8.0 * static_cast<double>(fieldBytes(type));
-  const bool is_signed = type == FieldType::kI8 || type == FieldType::kI16 || type == FieldType::kI32;
-  const double lowest = is_signed ? -std::pow(2.0, bits - 1) : 0.0;
-  const double highest = is_signed ? std::pow(2.0, bits - 1) - 1 : std::pow(2.0, bits) - 1;
+  const double lowest = isSigned(type) ? -std::pow(2.0, bits - 1) : 0.0;
+  const double highest = isSigned(type) ? std::pow(2.0, bits - 1) - 1 : std::pow(2.0, bits) - 1;
   return value >= lowest && value <= highest;
 }
 
@@ -66,12 +69,25 @@ std::optional<std::size_t> FrameSpec::sequenceField() const {
 
 bool isInteger(FieldType type) { return type != FieldType::kF32 && type != FieldType::kF64; }
 
+bool isSigned(FieldType type) { return type == FieldType::kI8 || type == FieldType::kI16 || type == FieldType::kI32; }
+
 std::vector<SpecProblem> FrameSpec::validate() const {
   std::vector<SpecProblem> problems;
   if (sync.empty()) problems.push_back({-1, "sync", "at least one byte"});
   for (const std::string& error : checksum.validate()) {
     problems.push_back({-1, "checksum", error});
   }
+  // Offsets first: the byte map below is sized by them.
+  const auto beyond = [](std::size_t at, std::size_t bytes) { return at > kMaxFrameBytes || bytes > kMaxFrameBytes - at; };
+  bool bounded = !beyond(0, sync.size()) && checksum.bytes() > 0 && !beyond(checksum_at, static_cast<std::size_t>(checksum.bytes()));
+  if (!bounded) problems.push_back({-1, "checksum", "the frame must end within " + std::to_string(kMaxFrameBytes) + " bytes"});
+  for (std::size_t i = 0; i < fields.size(); ++i) {
+    if (beyond(fields[i].at, fieldBytes(fields[i].type))) {
+      problems.push_back({static_cast<int>(i), "at", "beyond the longest frame, " + std::to_string(kMaxFrameBytes) + " bytes"});
+      bounded = false;
+    }
+  }
+  if (!bounded) return problems;
   // Who owns each byte: the sync, a field, or the check; none twice, none left out.
   const std::size_t total = size();
   std::vector<int> owner(total, -3);  // -3 nobody, -2 sync, -1 check, >= 0 a field
@@ -106,7 +122,9 @@ std::vector<SpecProblem> FrameSpec::validate() const {
       problems.push_back({index, "const", "does not fit the field's type"});
     }
     if (!std::isfinite(f.scale) || f.scale == 0.0) problems.push_back({index, "scale", "must be finite and non-zero"});
-    if (f.sequence && !isInteger(f.type)) problems.push_back({index, "sequence", "a sample counter must be an integer"});
+    if (f.sequence && (!isInteger(f.type) || isSigned(f.type))) {
+      problems.push_back({index, "sequence", "a sample counter must be an unsigned integer (u8, u16, u32)"});
+    }
     if (f.sequence && ++counters > 1) problems.push_back({index, "sequence", "a frame has one sample counter"});
     if (!f.maps_to.empty() && !published.insert(f.maps_to).second) {
       problems.push_back({index, "to", "'" + f.maps_to + "' is carried by another field too"});

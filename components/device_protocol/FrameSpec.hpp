@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstddef>
+#include <algorithm>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -11,6 +12,10 @@
 
 namespace flatsat::device_protocol {
 
+/// The longest frame a description may give [bytes]: offsets beyond it are refused
+/// before any arithmetic on them.
+inline constexpr std::size_t kMaxFrameBytes = 1024;
+
 /// Wire types of a frame's fields. 64-bit integers are left out: a field's value travels
 /// as a double, exact up to 2^53.
 enum class FieldType { kU8, kI8, kU16, kI16, kU32, kI32, kF32, kF64 };
@@ -19,6 +24,7 @@ enum class FieldType { kU8, kI8, kU16, kI16, kU32, kI32, kF32, kF64 };
 std::optional<FieldType> fieldTypeFromName(const std::string& name);
 std::size_t fieldBytes(FieldType type);
 bool isInteger(FieldType type);
+bool isSigned(FieldType type);
 
 /// One field of a frame: where it sits, how it is coded, and what it means.
 struct FieldSpec {
@@ -27,7 +33,7 @@ struct FieldSpec {
   FieldType type = FieldType::kU8;
   bool little_endian = true;
   std::optional<double> constant;         // header value: a frame without it is refused (bad header)
-  bool sequence = false;                  // the device's sample counter: gaps are counted
+  bool sequence = false;                  // the device's sample counter, unsigned: gaps are counted modulo its range
   double scale = 1.0;                     // [unit of `maps_to` per count], finite, non-zero
   std::string maps_to;                    // the topic field it carries ("" : decoded, not published)
 
@@ -55,12 +61,13 @@ struct FrameSpec {
   std::size_t covers_from = 0;            // [byte] first byte the check covers: 0 or sync.size()
   std::size_t covers_to = 0;              // [byte] one past the last: checksum_at
 
-  std::size_t size() const { return checksum_at + static_cast<std::size_t>(checksum.bytes()); }
+  std::size_t size() const { return checksum_at + static_cast<std::size_t>(std::max(checksum.bytes(), 0)); }
   /// The field that carries topic field `maps_to`, or the sample counter; nullopt: none.
   std::optional<std::size_t> fieldFor(const std::string& maps_to) const;
   std::optional<std::size_t> sequenceField() const;
-  /// Every problem; empty when the frame is well formed: every byte is sync, one field or
-  /// the check, none twice; constants fit their type; the check covers the frame.
+  /// Every problem; empty when the frame is well formed: at most kMaxFrameBytes; every
+  /// byte is sync, one field or the check, none twice; constants fit their type exactly;
+  /// a counter is unsigned; the check covers the frame.
   std::vector<SpecProblem> validate() const;
 };
 

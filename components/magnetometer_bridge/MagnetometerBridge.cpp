@@ -28,6 +28,9 @@ std::optional<MagnetometerFields> MagnetometerFields::of(const device_protocol::
     fields.scale_T[i] = frame.fields[*index].scale;
   }
   fields.sequence = frame.sequenceField();
+  if (fields.sequence) {
+    fields.sequence_modulus = std::uint64_t{1} << (8 * device_protocol::fieldBytes(frame.fields[*fields.sequence].type));
+  }
   return fields;
 }
 
@@ -43,9 +46,10 @@ MagnetometerBridgeOutput MagnetometerBridge::step(const device_protocol::RawValu
   out.saturated = (b_S_T.cwiseAbs().array() >= params_.range_T).any();
   out.b_B_T = params_.q_body_sensor * b_S_T;
   if (fields_.sequence) {
-    const auto sequence = static_cast<std::uint32_t>(frame[*fields_.sequence]);
-    // Unsigned arithmetic: a wrap of the 32-bit counter is not a gap.
-    if (has_last_) out.missed_samples = sequence - last_sequence_ - 1;
+    // An unsigned counter (FrameSpec::validate): its wrap is not a gap.
+    const auto sequence = static_cast<std::uint64_t>(frame[*fields_.sequence]);
+    const std::uint64_t m = fields_.sequence_modulus;
+    if (has_last_) out.missed_samples = (sequence + 2 * m - last_sequence_ - 1) % m;
     has_last_ = true;
     last_sequence_ = sequence;
   }
@@ -54,14 +58,14 @@ MagnetometerBridgeOutput MagnetometerBridge::step(const device_protocol::RawValu
 
 device_protocol::RawValues deviceFrame(const Eigen::Vector3d& b_B_T, const MagnetometerBridgeParams& mounting,
                                        const device_protocol::FrameSpec& frame, const MagnetometerFields& fields,
-                                       std::uint32_t sequence) {
+                                       std::uint64_t sequence) {
   const Eigen::Vector3d b_S_T = mounting.q_body_sensor.conjugate() * b_B_T;
   device_protocol::RawValues raw(frame.fields.size(), 0.0);
   for (std::size_t i = 0; i < 3; ++i) {
     const double clipped = std::clamp(b_S_T[static_cast<Eigen::Index>(i)], -mounting.range_T, mounting.range_T);
-    raw[fields.axis[i]] = std::round(clipped / fields.scale_T[i]);
+    raw[fields.axis[i]] = clipped / fields.scale_T[i];  // encodeFrame rounds an integer field
   }
-  if (fields.sequence) raw[*fields.sequence] = static_cast<double>(sequence);
+  if (fields.sequence) raw[*fields.sequence] = static_cast<double>(sequence % fields.sequence_modulus);
   return raw;
 }
 

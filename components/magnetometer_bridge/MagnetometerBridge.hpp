@@ -29,6 +29,7 @@ struct MagnetometerFields {
   std::array<std::size_t, 3> axis{};       // the fields of b_body_T[0..2], sensor axes on the wire
   std::array<double, 3> scale_T{};         // [T per count]
   std::optional<std::size_t> sequence;     // the sample counter, when the frame has one
+  std::uint64_t sequence_modulus = 0;      // [-] its range: 2^(8 × its bytes)
 
   /// From a frame description; nullopt with `why` set when it does not carry all three axes.
   static std::optional<MagnetometerFields> of(const device_protocol::FrameSpec& frame, std::string& why);
@@ -37,7 +38,7 @@ struct MagnetometerFields {
 struct MagnetometerBridgeOutput {
   Eigen::Vector3d b_B_T = Eigen::Vector3d::Zero();  // [T] body axes
   bool saturated = false;             // an axis at or beyond full scale
-  std::uint32_t missed_samples = 0;   // sequence numbers skipped before this one
+  std::uint64_t missed_samples = 0;   // sequence numbers skipped before this one
 };
 
 /// The device's frames as the rig's magnetometer reading: counts in sensor axes to tesla in
@@ -56,13 +57,13 @@ class MagnetometerBridge {
   Params params_;
   MagnetometerFields fields_;
   bool has_last_ = false;
-  std::uint32_t last_sequence_ = 0;
+  std::uint64_t last_sequence_ = 0;
 };
 
-/// The device end: the field in body axes as the device's frame values (sensor axes, whole
-/// counts, clipped at full scale). Used by the device simulator.
+/// The device end: the field in body axes as the device's frame values (sensor axes, in
+/// counts, clipped at full scale; the counter modulo its range). Used by the device simulator.
 device_protocol::RawValues deviceFrame(const Eigen::Vector3d& b_B_T, const MagnetometerBridgeParams& mounting,
                                        const device_protocol::FrameSpec& frame, const MagnetometerFields& fields,
-                                       std::uint32_t sequence);
+                                       std::uint64_t sequence);
 
 }  // namespace flatsat::magnetometer_bridge

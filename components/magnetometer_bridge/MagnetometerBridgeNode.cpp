@@ -96,6 +96,11 @@ void readMagnetometerProtocol(const bus::Scenario& scenario, bus::ParamReader& r
                               device_protocol::DeviceProtocol& protocol, MagnetometerFields& fields) {
   std::string file = "magnetometer.yaml";
   r.read("protocol", file);
+  std::optional<std::uint32_t> baud;  // read first: a bad description must not leave it unread
+  if (r.has("baud")) {
+    baud = 0;
+    r.read("baud", *baud);
+  }
   const auto units = [](const std::string& topic, const std::string& field) -> std::optional<std::string> {
     if (topic != bus::topics::kMagnetometer.name) return std::nullopt;
     for (const auto& leaf : msg::leafFields<msg::MagnetometerReading>()) {
@@ -110,13 +115,18 @@ void readMagnetometerProtocol(const bus::Scenario& scenario, bus::ParamReader& r
     return r.problem("protocol", "'" + file + "' describes frames for " + protocol.topic + ", not " +
                                      std::string(bus::topics::kMagnetometer.name));
   }
+  // The bridge turns sensor axes into body axes by the magnetometer's mounting, and by no other.
+  if (protocol.sensor_axes != "magnetometer") {
+    r.problem("protocol", "'" + file + "' gives sensor_axes '" + protocol.sensor_axes +
+                              "': a magnetometer's frames are in spacecraft.sensors.magnetometer's axes");
+  }
   std::string why;
   if (const auto found = MagnetometerFields::of(protocol.frame, why)) {
     fields = *found;
   } else {
     r.problem("protocol", "'" + file + "': " + why);
   }
-  r.read("baud", protocol.line.baud);
+  if (baud) protocol.line.baud = *baud;
   r.problems(protocol.line.validate());
 }
 

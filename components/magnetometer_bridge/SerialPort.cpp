@@ -30,14 +30,6 @@ speed_t speedFor(std::uint32_t baud, const std::string& what) {
   }
 }
 
-tcflag_t characterSize(int data_bits) {
-  switch (data_bits) {
-    case 5: return CS5;
-    case 6: return CS6;
-    case 7: return CS7;
-    default: return CS8;
-  }
-}
 }  // namespace
 
 void makeRaw(int fd, const device_protocol::LineSettings& line, const std::string& what) {
@@ -48,9 +40,12 @@ void makeRaw(int fd, const device_protocol::LineSettings& line, const std::strin
   cfmakeraw(&tio);
   tio.c_cflag |= CLOCAL | CREAD;
   tio.c_cflag &= ~(CSIZE | CSTOPB | CRTSCTS | PARENB | PARODD);
-  tio.c_cflag |= characterSize(line.data_bits);
+  tio.c_cflag |= CS8;  // LineSettings: binary frames, 8 data bits
   if (line.stop_bits == 2) tio.c_cflag |= CSTOPB;
-  if (line.parity != "none") tio.c_cflag |= PARENB | (line.parity == "odd" ? PARODD : 0);
+  if (line.parity != "none") {
+    tio.c_cflag |= PARENB | (line.parity == "odd" ? PARODD : 0);
+    tio.c_iflag |= INPCK;  // a byte with a parity error reads as 0, which the frame's check refuses
+  }
   const speed_t speed = speedFor(line.baud, what);
   cfsetispeed(&tio, speed);
   cfsetospeed(&tio, speed);

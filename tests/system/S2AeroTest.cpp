@@ -194,7 +194,7 @@ TEST_CASE("S2 on the equatorial orbit (claim 8): flaps on wings along yaw give r
   INFO("flap torque sums (roll, pitch, yaw) " << sum[0] << ", " << sum[1] << ", " << sum[2] << " N m; torque error median "
                                             << quantile(met.relative_error, 0.5) << ", p99 "
                                             << quantile(met.relative_error, 0.99));
-  // The plates push along normals in the x-y plane from points on z: no yaw at all, on the
+  // The plates' centres of pressure are on the z axis: no arm about z, no yaw at all, on the
   // plant's panel model with the true wind. Most of their torque is pitch (8.2 x the roll).
   CHECK(sum[2] <= 1e-12 * (sum[0] + sum[1]));
   CHECK(sum[1] > 8.15 / 1.5 * sum[0]);

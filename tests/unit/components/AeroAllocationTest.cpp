@@ -98,7 +98,7 @@ TEST_CASE("S2 split on an equatorial orbit (claim 8): the flaps give roll and pi
   std::mt19937 rng(13);
   std::uniform_real_distribution<double> tilt(-0.35, 0.35);
   for (int k = 0; k < 2000; ++k) {
-    // The field near the equator: along the orbit normal (pitch), tilted by up to ~20°.
+    // The field near the equator: along the orbit normal (pitch), tilted by up to ~26°.
     const AeroAllocationInput in = demandIn(3e-5 * Eigen::Vector3d(tilt(rng), -1.0, tilt(rng)).normalized(), rng);
     const auto out = split.step(in, 0);
     REQUIRE(out.delivered == 1.0);

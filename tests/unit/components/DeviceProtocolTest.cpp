@@ -71,6 +71,7 @@ TEST_CASE("device checks reproduce the CRC catalogue's check values", "[device_p
   CHECK(check(K::kCrc, 32, 0x04C11DB7, 0xFFFFFFFF, false, 0) == 0x0376E6E7);          // CRC-32/MPEG-2
   CHECK(check(K::kCrc, 8, 0x07, 0x00, false, 0) == 0xF4);                   // CRC-8 (SMBus)
   CHECK(check(K::kSum8, 8, 1, 0, false, 0) == 0xDD);  // 0x31 + … + 0x39 = 0x1DD
+  CHECK(check(K::kSum8, 8, 1, 0, false, 0xFF) == 0x22);  // "~sum": the complement
   CHECK(check(K::kXor8, 8, 1, 0, false, 0) == 0x31);
   CHECK_FALSE(ChecksumSpec{K::kCrc, 12, 0x80F, 0, false, false, 0}.validate().empty());
   CHECK_FALSE(ChecksumSpec{K::kCrc, 16, 0x1020, 0, false, false, 0}.validate().empty());  // even generator
@@ -195,6 +196,7 @@ TEST_CASE("big-endian floats and a one-byte sum: a frame whose check passes but 
   spec.fields = {{"w", 2, FieldType::kF32, false, {}, false, 1.0, "w"}, {"seq", 6, FieldType::kU8, false, {}, true, 1.0, ""}};
   spec.checksum.kind = ChecksumSpec::Kind::kSum8;
   spec.checksum.width_bits = 8;
+  spec.checksum.init = 0;
   spec.checksum_at = spec.covers_to = 7;
   spec.covers_from = 2;
   REQUIRE(spec.validate().empty());
@@ -254,6 +256,26 @@ TEST_CASE("a bad device description is refused at its own line, with the reason"
   const std::string elsewhere = problemsOf("field.yaml", misnamed, crc);
   CHECK_THAT(elsewhere, Catch::Contains("frame.fields[0].const: does not fit") &&
                             Catch::Contains("'b_body_X[0]' is not a field of flatsat/magnetometer"));
+  CHECK_THAT(problemsOf("far.yaml", changed("at: 7, type: u8", "at: 18446744073709551615, type: u8"), crc),
+             Catch::Contains("frame.fields[2].at: beyond the longest frame, 1024 bytes"));
+  CHECK_THAT(problemsOf("signed.yaml", changed("{name: pad, at: 7, type: u8}", "{name: pad, at: 7, type: i8, sequence: true}"), crc),
+             Catch::Contains("a sample counter must be an unsigned integer"));
+  CHECK_THAT(problemsOf("sum.yaml", good, "{kind: sum8, poly: 0x07, at: 8, covers_from: 2}"),
+             Catch::Contains("frame.checksum.poly: a CRC's parameter: sum8 has none"));
+  const DescriptionFile seven("seven.yaml", std::string(head).replace(head.find("{baud: 115200}"), 14, "{baud: 115200, data_bits: 7}") +
+                                                good + "  checksum: " + crc + "\n");
+  bus::ConfigProblems seven_bits;
+  readDeviceProtocol(seven.path.string(), magnetometerUnits, seven_bits);
+  CHECK_THAT(seven_bits.joined(), Catch::Contains("line.data_bits: 7 must be 8 for binary frames"));
+  FrameSpec inexact;
+  inexact.sync = {0xAA};
+  inexact.fields = {{"k", 1, FieldType::kF32, true, 0.1, false, 1.0, ""}};
+  inexact.checksum_at = inexact.covers_to = 5;
+  inexact.covers_from = 1;
+  REQUIRE(inexact.validate().size() == 1);
+  CHECK(inexact.validate()[0].reason == "does not fit the field's type");  // 0.1 is no float
+  CHECK_THROWS_AS(FrameParser(inexact), std::invalid_argument);
+  CHECK_THROWS_AS(encodeFrame(magnetometer().frame, {1, 2}), std::invalid_argument);
   bus::ConfigProblems missing;
   readDeviceProtocol("/nonexistent/device.yaml", magnetometerUnits, missing);
   CHECK_THAT(missing.joined(), Catch::Contains("/nonexistent/device.yaml: cannot read"));

@@ -76,3 +76,40 @@ TEST_CASE("the device end writes the body field as the frame's counts, clipped a
                                                         s.frame, s.fields, 0);
   CHECK(clipped[5] == 100000.0);  // 100 uT full scale, in nT counts
 }
+
+TEST_CASE("a one-byte counter wraps without a gap, and the device end writes it modulo 256",
+          "[magnetometer_bridge][unit]") {
+  using device_protocol::FieldSpec;
+  using device_protocol::FieldType;
+  device_protocol::FrameSpec frame;
+  frame.name = "compact";
+  frame.sync = {0x5A};
+  frame.fields = {FieldSpec{"seq", 1, FieldType::kU8, true, {}, true, 1.0, ""}};
+  for (std::size_t i = 0; i < 3; ++i) {
+    frame.fields.push_back({"b" + std::to_string(i), 2 + 2 * i, FieldType::kI16, true, {}, false, 4e-9,
+                            "b_body_T[" + std::to_string(i) + "]"});
+  }
+  frame.checksum.kind = device_protocol::ChecksumSpec::Kind::kSum8;
+  frame.checksum.width_bits = 8;
+  frame.checksum.init = 0;
+  frame.checksum_at = frame.covers_to = 8;
+  frame.covers_from = 1;
+  REQUIRE(frame.validate().empty());
+  std::string why;
+  const auto fields = MagnetometerFields::of(frame, why);
+  REQUIRE(fields);
+  CHECK(fields->sequence_modulus == 256);
+  MagnetometerBridge bridge(MagnetometerBridgeParams{}, *fields);
+  CHECK(bridge.step({254, 0, 0, 0}).missed_samples == 0);
+  CHECK(bridge.step({255, 0, 0, 0}).missed_samples == 0);
+  CHECK(bridge.step({0, 0, 0, 0}).missed_samples == 0);    // the wrap
+  CHECK(bridge.step({3, 0, 0, 0}).missed_samples == 2);    // 1 and 2 lost
+  CHECK(bridge.step({1, 0, 0, 0}).missed_samples == 253);  // an old frame again: read as a long gap
+  // The device end: 300 as the counter's 44; 10 µT in 4 nT counts, rounded by the encoder.
+  const auto raw = magnetometer_bridge::deviceFrame(Eigen::Vector3d(10e-6, 0.0, -6e-9), MagnetometerBridgeParams{}, frame,
+                                                    *fields, 300);
+  CHECK(raw[0] == 44.0);
+  const auto bytes = device_protocol::encodeFrame(frame, raw);
+  CHECK(device_protocol::decodeField(frame.fields[1], bytes.data()) == 2500.0);
+  CHECK(device_protocol::decodeField(frame.fields[3], bytes.data()) == -2.0);  // −1.5 counts, to the nearest even
+}

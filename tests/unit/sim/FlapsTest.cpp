@@ -189,8 +189,8 @@ TEST_CASE("Flaps on wings along yaw z (claim 8, equatorial orbit): roll and pitc
     CHECK((flaps.nominalTorque_B_Nm(theta, kRho, kV) - by_hand.torque_B_Nm).norm() < tolerance);
     CHECK((scale * flapTorqueShape_B(Flaps::normalisedTorques(theta), FlapWings::kAlongZ) - by_hand.torque_B_Nm).norm() <
           tolerance);
-    // A specular plate pushes along its normal, in the x–y plane, from a point on z: whatever
-    // the wind's direction, no yaw.
+    // Every plate's centre of pressure is on the z axis: whatever the wind's direction and
+    // the force it gives, no arm about z, no yaw.
     for (const Eigen::Vector3d& wind : {Eigen::Vector3d(kV, 300.0, -500.0), Eigen::Vector3d(kV, -800.0, 200.0)}) {
       CHECK(std::abs(aerodynamicForceTorque(panels, kRho, wind).torque_B_Nm.z()) < 1e-15 * scale);
     }

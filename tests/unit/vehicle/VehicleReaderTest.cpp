@@ -11,6 +11,9 @@
 
 #include <catch2/catch.hpp>
 
+#include "sim/SphericalHarmonicField.hpp"
+#include "sim/SpotFieldModel.hpp"
+#include "sim/Time.hpp"
 #include "vehicle/VehicleReader.hpp"
 
 using namespace flatsat;
@@ -155,6 +158,17 @@ TEST_CASE("onboard.spot_harmonics: the seed's first harmonic, or harmonics 1, 3 
   CHECK(s_odd[3].norm() > 1e-7);
   CHECK(s_odd[5].norm() > 1e-9);
   CHECK(c_odd[2].norm() + s_odd[2].norm() + c_odd[0].norm() == 0.0);
+  // Taken along the onboard orbit (90 deg), not the truth's (53 deg): off the pole the
+  // zonal field has a cross-track part, B_Y = Σ (a/r)^(n+2) g_n0 P_n'(s) cos i.
+  const auto igrf = sim::igrf14(std::string(FLATSAT_DATA_DIR) + "/igrf/igrf14coeffs.txt", sim::decimalYear(odd.onboard.epoch));
+  const auto along = [&](double inclination_rad) {
+    return sim::SpotFieldModel::zonalHarmonics(igrf, odd.onboard.orbit.semi_major_axis_m, inclination_rad, {1, 3, 5});
+  };
+  for (int k : {1, 3, 5}) {
+    CHECK(s_odd[k].isApprox(along(M_PI / 2).sineTerms_T()[k], 1e-12));
+    CHECK(c_odd[k].isApprox(along(M_PI / 2).cosineTerms_T()[k], 1e-12));
+  }
+  CHECK_FALSE(c_odd[1].isApprox(along(odd.truth.orbit.inclination_rad).cosineTerms_T()[1], 1e-3));
 
   bus::ConfigProblems refused;
   vehicle::readVehicle(over.load("misplaced.yaml", "onboard: {field_model: igrf14, spot_harmonics: odd}\n"), refused);
