@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <chrono>
+#include <cstdio>
 #include <filesystem>
 #include <thread>
 
@@ -57,13 +58,20 @@ void MagnetometerBridgeNode::run() {
   publishHealth(msg::ComponentState::RUNNING, 0, "reading " + params_.device);
 
   std::array<std::uint8_t, 512> buffer{};
-  auto next_health = std::chrono::steady_clock::now();
+  using Clock = std::chrono::steady_clock;
+  auto next_health = Clock::now();
+  auto last_frame = Clock::now();
+  bool late = false;
+  const auto silent_s = [&] { return std::chrono::duration<double>(Clock::now() - last_frame).count(); };
   while (!interrupted()) {
     const long n = port.read(buffer, std::chrono::milliseconds(100));
     if (n < 0) throw bus::NodeFailure(name() + ": line lost on " + params_.device);
     for (long i = 0; i < n; ++i) {
       const auto sample = parser_.push(buffer[static_cast<std::size_t>(i)]);
       if (!sample) continue;
+      if (late) spdlog::info("{}: frames again from {} after {:.1f} s", name(), params_.device, silent_s());
+      late = false;
+      last_frame = Clock::now();
       const auto out = bridge_.step(*sample);
       missed_ += out.missed_samples;
       const auto step = stepNow();
@@ -75,14 +83,21 @@ void MagnetometerBridgeNode::run() {
       reading.valid(true);
       reading_.write(reading);
     }
-    if (std::chrono::steady_clock::now() >= next_health) {
+    if (!late && silent_s() > params_.late_after_s) {
+      late = true;
+      spdlog::warn("{}: late: no good frame from {} for {:.1f} s", name(), params_.device, silent_s());
+      next_health = Clock::now();  // say so now, not at the next second
+    }
+    if (Clock::now() >= next_health) {
       const auto& c = parser_.counts();
+      char silence[64] = "";
+      if (late) std::snprintf(silence, sizeof silence, "late: no good frame for %.1f s; ", silent_s());
       publishHealth(msg::ComponentState::RUNNING, c.frames,
-                    "frames " + std::to_string(c.frames) + ", bad checksum " + std::to_string(c.bad_checksum) +
+                    silence + std::string("frames ") + std::to_string(c.frames) + ", bad checksum " + std::to_string(c.bad_checksum) +
                         ", bad header " + std::to_string(c.bad_header) + ", skipped bytes " +
                         std::to_string(c.skipped_bytes) + ", bad value " + std::to_string(c.bad_value) +
                         ", missed samples " + std::to_string(missed_));
-      next_health += std::chrono::seconds(1);
+      next_health = Clock::now() + std::chrono::seconds(1);
     }
   }
   publishHealth(msg::ComponentState::STOPPED, parser_.counts().frames, "stopped");
@@ -140,6 +155,8 @@ MagnetometerBridgeNodeParams readParams(const bus::Scenario& scenario, const veh
   r.read("device", p.device);
   readMagnetometerProtocol(scenario, r, problems, p.protocol, p.fields);
   r.read("range_T", p.bridge.range_T, "T");
+  r.read("late_after_s", p.late_after_s, "s");
+  if (!(p.late_after_s > 0.0 && std::isfinite(p.late_after_s))) r.problem("late_after_s", "must be > 0");
   r.problems(p.bridge.validate());
   r.finish();
   return p;

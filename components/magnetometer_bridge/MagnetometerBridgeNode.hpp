@@ -18,6 +18,7 @@ struct MagnetometerBridgeNodeParams {
   device_protocol::DeviceProtocol protocol;  // the device's frame and line (deploy/devices/magnetometer.yaml)
   MagnetometerFields fields;                 // where its frame carries the field
   std::string device;  // serial port or pseudo-terminal (default: <run dir>/magnetometer.pty)
+  double late_after_s = 0.5;  // [s] no good frame for this long: late (health, a warning), > 0; below the lease (1 s)
 };
 
 /// Hardware bridge (architecture, "Hardware swap-in"): frames from the device's serial line out
@@ -25,7 +26,8 @@ struct MagnetometerBridgeNodeParams {
 /// over the emulator's while it lives; when it dies its liveliness lease runs
 /// out and readers fall back to the emulator. Not stepped: each sample is
 /// stamped with the step of its arrival (stepNow()). Bad frames are counted (health)
-/// and never published.
+/// and never published. A device that falls silent is `late` (health, a warning)
+/// after late_after_s, and then, writing nothing, loses its lease like a dead bridge.
 class MagnetometerBridgeNode final : public bus::Node {
  public:
   MagnetometerBridgeNode(bus::Bus& bus, bus::NodeOptions options,

@@ -4,15 +4,18 @@
 // a frame on a pseudo-terminal, in sensor axes (mounted 90 deg about z); the
 // bridge reads the line, turns each frame back into body axes and publishes it
 // as flatsat/magnetometer, stamped with the step of the newest grant. Every
-// reading is a field the truth carried, to the frame's 1 nT per axis.
+// reading is a field the truth carried, to the frame's 1 nT per axis. When the truth stops,
+// so does the device, and the bridge's health says it is late.
 #include <catch2/catch.hpp>
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <mutex>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -69,6 +72,13 @@ TEST_CASE("magnetometer device and bridge nodes carry the truth field through a 
                                                            readings.push_back(r);
                                                          });
 
+  std::vector<std::string> bridge_health;  // the bridge's health messages, in order
+  bus::ReaderOf<bus::topics::kHealth> health(rig_bus, bus::topics::kHealth, [&](const msg::Health& h) {
+    if (bus::text(h.header().source()) != "magnetometer_bridge") return;
+    std::lock_guard lock(mutex);
+    bridge_health.push_back(bus::text(h.message()));
+  });
+
   magnetometer_device::MagnetometerDeviceParams device_params;
   device_params.mounting.q_body_sensor = mounting;
   device_params.link = link;
@@ -77,6 +87,7 @@ TEST_CASE("magnetometer device and bridge nodes carry the truth field through a 
   magnetometer_bridge::MagnetometerBridgeNodeParams bridge_params;
   bridge_params.bridge.q_body_sensor = mounting;
   bridge_params.device = link;
+  bridge_params.late_after_s = 0.3;
   useShippedProtocol(bridge_params.protocol, bridge_params.fields);
   magnetometer_bridge::MagnetometerBridgeNode bridge(bridge_bus, {"magnetometer_bridge", {}}, bridge_params);
   std::thread bridge_thread([&] { bridge.run(); });
@@ -102,10 +113,19 @@ TEST_CASE("magnetometer device and bridge nodes carry the truth field through a 
     std::lock_guard lock(mutex);
     if (readings.size() >= 5) break;
   }
+  // The truth stops, so does the device: the bridge says it is late.
+  const auto said_late = [&] {
+    std::lock_guard lock(mutex);
+    return std::any_of(bridge_health.begin(), bridge_health.end(),
+                       [](const std::string& m) { return m.rfind("late: no good frame for", 0) == 0; });
+  };
+  const auto quiet_deadline = Clock::now() + std::chrono::seconds(10);
+  while (!said_late() && Clock::now() < quiet_deadline) std::this_thread::sleep_for(std::chrono::milliseconds(50));
   bus::requestShutdown();
   bridge_thread.join();
   bus::clearShutdownRequest();
 
+  CHECK(said_late());
   std::lock_guard lock(mutex);
   REQUIRE(readings.size() >= 5);
   for (const auto& r : readings) {

@@ -91,4 +91,13 @@ inline std::vector<nlohmann::json> exportedRows(const std::filesystem::path& dir
 /// RTPS datagrams start with the magic "RTPS" right after the UDP header.
 inline const std::string kRtpsFilter = "udp and udp[8:4] = 0x52545053";
 
+/// kRtpsFilter for the test's own domains, d and d + 1 (testDomain()): every port an RTPS
+/// participant of domain d sends to or from, multicast and unicast, lies in
+/// 7400 + 250 d + [0, 250) (RTPS 2.2 §9.6.1.1). A capture on every interface then does
+/// not count the rig of another test running beside it on its own Docker or namespace network.
+inline std::string rtpsFilterOfTestDomain() {
+  const std::uint32_t first = 7400 + 250 * testDomain();
+  return kRtpsFilter + " and portrange " + std::to_string(first) + "-" + std::to_string(first + 499);
+}
+
 }  // namespace flatsat::test

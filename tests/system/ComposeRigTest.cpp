@@ -64,10 +64,12 @@ ComposeRun runCompose(const std::string& tag, const std::string& environment) {
       << "tcpdump -i ${host_if:-eth0} -n -p -U -w " << host_pcap << " '" << test::kRtpsFilter
       << "' 2>/dev/null & host_dump=$!\n"
       // A bridge device shows only what is addressed to it, not what it
-      // forwards: the veth ports (all interfaces but loopback) show that.
-      << "tcpdump -i any -n -p -U -w " << bridge_pcap << " '" << test::kRtpsFilter
+      // forwards: the veth ports (all interfaces but loopback) show that; of
+      // them, only this rig's domain (another test's rig may run beside it).
+      << "tcpdump -i any -n -p -U -w " << bridge_pcap << " '" << test::rtpsFilterOfTestDomain()
       << " and not net 127.0.0.0/8' 2>/dev/null & bridge_dump=$!\nsleep 1\n"
-      << "FLATSAT_RIG_ID=" << id << " " << environment << " " << kRunSh << " " << kDefault << " " << out
+      << "FLATSAT_DOMAIN=" << test::testDomain() << " FLATSAT_RIG_ID=" << id << " " << environment << " " << kRunSh
+      << " " << kDefault << " " << out
       << " -q " << kLength << "\nrc=$?\nsleep 1\nkill -INT $host_dump $bridge_dump 2>/dev/null\n"
       << "wait $host_dump $bridge_dump\necho rc=$rc\n";
   ComposeRun run;
