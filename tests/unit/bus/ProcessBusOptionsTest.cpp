@@ -64,4 +64,22 @@ TEST_CASE("only a lockstep sink of a rig on shared memory reads best-effort, and
   CHECK(readerQos(QosKind::kStepped).reliability().kind == dds::RELIABLE_RELIABILITY_QOS);
 }
 
+TEST_CASE("a lockstep rig acknowledges over shared memory only when the launcher owns every process", "[bus][qos]") {
+  using test::ScopedEnv;
+  const ScopedEnv no_peers("FLATSAT_PEERS", nullptr), no_servers("FLATSAT_DISCOVERY_SERVER", nullptr),
+      no_network("FLATSAT_NETWORK", nullptr);
+  Scenario lockstep;
+  lockstep.pacing = Pacing::kLockstep;
+  lockstep.components = {{.name = "estimator"}, {.name = "wheel_tach"}};
+  const NodeArgs estimator{.name = "estimator", .shared_memory_rig = true};
+  CHECK(processBusOptions(lockstep, estimator, kEmulatorStrength).acks_over_shm);
+  // An external process may be killed holding a shared-memory port's lock (NodeMain.cpp).
+  lockstep.components.back().launched = false;
+  CHECK_FALSE(processBusOptions(lockstep, estimator, kEmulatorStrength).acks_over_shm);
+  Scenario paced = lockstep;
+  paced.pacing = Pacing::kPaced;
+  paced.components.back().launched = true;
+  CHECK_FALSE(processBusOptions(paced, estimator, kEmulatorStrength).acks_over_shm);
+}
+
 }  // namespace flatsat::bus
