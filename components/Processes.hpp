@@ -15,8 +15,8 @@ namespace estimator { int runProcess(int argc, char** argv); }
 namespace attitude_controller { int runProcess(int argc, char** argv); }
 namespace unloading_controller { int runProcess(int argc, char** argv); }
 namespace recorder { int runProcess(int argc, char** argv); }
-namespace magnetometer_bridge { int runProcess(int argc, char** argv); }
-namespace magnetometer_device { int runProcess(int argc, char** argv); }
+namespace device_bridge { int runProcess(int argc, char** argv); }
+namespace device_sim { int runProcess(int argc, char** argv); }
 namespace thruster_sequencer { int runProcess(int argc, char** argv); }
 namespace star_tracker { int runProcess(int argc, char** argv); }
 namespace station_keeping { int runProcess(int argc, char** argv); }

@@ -13,8 +13,8 @@
 #include "components/estimator/EstimatorNode.hpp"
 #include "components/gyro/GyroNode.hpp"
 #include "components/magnetometer/MagnetometerNode.hpp"
-#include "components/magnetometer_bridge/MagnetometerBridgeNode.hpp"
-#include "components/magnetometer_device/MagnetometerDeviceNode.hpp"
+#include "components/device_bridge/DeviceBridgeNode.hpp"
+#include "components/device_sim/DeviceSimNode.hpp"
 #include "components/recorder/RecorderNode.hpp"
 #include "components/star_tracker/StarTrackerNode.hpp"
 #include "components/station_keeping/StationKeepingNode.hpp"
@@ -60,9 +60,9 @@ ComponentKind kind(const std::string& name, Read read) {
 
 /// A kind that only runs as its own process, for `reason`; its node reads `reads`.
 template <class Read>
-ComponentKind processOnly(const std::string& name, Read read, const std::string& reason,
+ComponentKind processOnly(const std::string& name, const std::string& executable, Read read, const std::string& reason,
                           std::vector<std::string> reads) {
-  return {name, "flatsat-" + name,
+  return {name, executable,
           [read](const bus::Scenario& s, const vehicle::Vehicle& v, const bus::NodeArgs& a, bus::ConfigProblems& p) {
             readWith(read, s, v, a, p);
           },
@@ -99,19 +99,37 @@ const std::vector<ComponentKind>& componentKinds() {
       kind<unloading_controller::UnloadingControllerNode>("unloading_controller",
                                                           unloading_controller::readParams),
       kind<recorder::RecorderNode>("recorder", recorder::readParams),
-      processOnly("magnetometer_bridge", magnetometer_bridge::readParams,
-                  "a hardware bridge: it publishes as its serial device delivers, on the wall "
-                  "clock, over the emulator at a higher DDS ownership strength",
-                  {std::string(bus::topics::kStepGrant.name)}),  // MagnetometerBridgeNode::grants_
-      processOnly("magnetometer_device", magnetometer_device::readParams,
-                  "a device stand-in: it plays a real unit on a pseudo-terminal, on the wall clock",
-                  {std::string(bus::topics::kTruth.name)}),  // MagnetometerDeviceNode::truth_
       kind<thruster_sequencer::ThrusterSequencerNode>("thruster_sequencer",
                                                       thruster_sequencer::readParams),
       kind<star_tracker::StarTrackerNode>("star_tracker", star_tracker::readParams),
       kind<station_keeping::StationKeepingNode>("station_keeping", station_keeping::readParams),
   };
-  return kinds;
+  static const std::vector<ComponentKind> with_devices = [] {
+    auto all = kinds;
+    // A hardware bridge for every box that publishes a stepped topic (the truth is the
+    // simulation's own), and a device stand-in for every sensor the truth can drive.
+    std::vector<std::string> producers;
+    bus::forEachTopic([&](const auto& def) {
+      const std::string producer(def.producer);
+      if (def.qos != bus::QosKind::kStepped || producer.empty() || producer == "dynamics_server") return;
+      if (std::find(producers.begin(), producers.end(), producer) == producers.end()) producers.push_back(producer);
+    });
+    for (const auto& producer : producers) {
+      all.push_back(processOnly(producer + "_bridge", "flatsat-device_bridge", device_bridge::readParams,
+                                "a hardware bridge: it publishes as its serial device delivers, on the wall "
+                                "clock, over the emulator at a higher DDS ownership strength",
+                                {std::string(bus::topics::kStepGrant.name)}));  // DeviceBridgeNode::grants_
+    }
+    for (const auto* sensor : {&bus::topics::kMagnetometer.producer, &bus::topics::kSunSensor.producer,
+                               &bus::topics::kGyro.producer, &bus::topics::kWheelTach.producer,
+                               &bus::topics::kStarTracker.producer}) {
+      all.push_back(processOnly(std::string(*sensor) + "_device", "flatsat-device_sim", device_sim::readParams,
+                                "a device stand-in: it plays a real unit on a pseudo-terminal, on the wall clock",
+                                {std::string(bus::topics::kTruth.name)}));  // DeviceSimNode::truth_
+    }
+    return all;
+  }();
+  return with_devices;
 }
 
 const ComponentKind* findComponentKind(const std::string& name) {

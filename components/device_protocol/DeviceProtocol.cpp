@@ -135,9 +135,16 @@ FieldSpec readField(bus::ParamReader& f, const std::string& topic, bool frame_li
     } else {
       // The scale is "counts to the topic field's unit": "1 nT" for a field in T.
       f.read("scale", field.scale, *unit);
+      if (f.has("full_scale")) {
+        field.full_scale = 0.0;
+        f.read("full_scale", *field.full_scale, *unit);
+      }
     }
-  } else if (f.has("scale")) {
-    f.problem("scale", "only with to: a field that is not published has no unit to scale to");
+  } else {
+    for (const char* key : {"scale", "full_scale"}) {
+      if (f.has(key)) f.problem(key, "only with to: a field that is not published has no unit to scale to");
+    }
+    f.leave({"scale", "full_scale"});
   }
   f.finish();
   return field;

@@ -122,6 +122,9 @@ std::vector<SpecProblem> FrameSpec::validate() const {
       problems.push_back({index, "const", "does not fit the field's type"});
     }
     if (!std::isfinite(f.scale) || f.scale == 0.0) problems.push_back({index, "scale", "must be finite and non-zero"});
+    if (f.full_scale && !(std::isfinite(*f.full_scale) && *f.full_scale > 0.0)) {
+      problems.push_back({index, "full_scale", "must be finite and > 0"});
+    }
     if (f.sequence && (!isInteger(f.type) || isSigned(f.type))) {
       problems.push_back({index, "sequence", "a sample counter must be an unsigned integer (u8, u16, u32)"});
     }

@@ -36,6 +36,7 @@ struct FieldSpec {
   bool sequence = false;                  // the device's sample counter, unsigned: gaps are counted modulo its range
   double scale = 1.0;                     // [unit of `maps_to` per count], finite, non-zero
   std::string maps_to;                    // the topic field it carries ("" : decoded, not published)
+  std::optional<double> full_scale;       // [unit of `maps_to`] the device's range, > 0: a value there is saturated
 
   std::size_t end() const { return at + fieldBytes(type); }
 };

@@ -50,7 +50,7 @@ double secondsUntil(Seen& seen, const std::string& source, double limit_s) {
 }  // namespace
 
 TEST_CASE("a bridge overrides its emulator while alive, killed, readers fall back within the lease",
-          "[magnetometer_bridge][component][dds][hil]") {
+          "[device_bridge][component][dds][hil]") {
   const std::uint32_t domain = test::testDomain();
   bus::QosTuning tuning;
   tuning.watch_liveliness = true;

@@ -1,8 +1,10 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "components/magnetometer_bridge/SerialPort.hpp"
+#include "components/device_bridge/SerialPort.hpp"
 
 #include <fcntl.h>
 #include <poll.h>
+#include <sys/stat.h>
+#include <sys/sysmacros.h>
 #include <termios.h>
 #include <unistd.h>
 
@@ -10,7 +12,7 @@
 #include <cstring>
 #include <stdexcept>
 
-namespace flatsat::magnetometer_bridge {
+namespace flatsat::device_bridge {
 
 namespace {
 speed_t speedFor(std::uint32_t baud, const std::string& what) {
@@ -30,6 +32,14 @@ speed_t speedFor(std::uint32_t baud, const std::string& what) {
   }
 }
 
+/// Unix 98 pseudo-terminal slaves (Linux devices.txt: majors 136..143) carry bytes, not
+/// bits: Linux keeps PARENB clear on them, and glibc's tcsetattr reports EINVAL when parity
+/// was the only change asked for (a second end opening a line set up already).
+bool isPseudoTerminal(int fd) {
+  struct stat st {};
+  return ::fstat(fd, &st) == 0 && S_ISCHR(st.st_mode) && major(st.st_rdev) >= 136 && major(st.st_rdev) <= 143;
+}
+
 }  // namespace
 
 void makeRaw(int fd, const device_protocol::LineSettings& line, const std::string& what) {
@@ -42,7 +52,7 @@ void makeRaw(int fd, const device_protocol::LineSettings& line, const std::strin
   tio.c_cflag &= ~(CSIZE | CSTOPB | CRTSCTS | PARENB | PARODD);
   tio.c_cflag |= CS8;  // LineSettings: binary frames, 8 data bits
   if (line.stop_bits == 2) tio.c_cflag |= CSTOPB;
-  if (line.parity != "none") {
+  if (line.parity != "none" && !isPseudoTerminal(fd)) {
     tio.c_cflag |= PARENB | (line.parity == "odd" ? PARODD : 0);
     tio.c_iflag |= INPCK;  // a byte with a parity error reads as 0, which the frame's check refuses
   }
@@ -81,4 +91,4 @@ long SerialPort::read(std::span<std::uint8_t> buffer, std::chrono::milliseconds 
   return -1;  // hang-up: the device end closed
 }
 
-}  // namespace flatsat::magnetometer_bridge
+}  // namespace flatsat::device_bridge

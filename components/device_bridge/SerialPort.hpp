@@ -7,7 +7,7 @@
 
 #include "components/device_protocol/DeviceProtocol.hpp"
 
-namespace flatsat::magnetometer_bridge {
+namespace flatsat::device_bridge {
 
 /// A serial line in raw mode (no flow control, no echo) with a device's line settings:
 /// a real port (/dev/ttyUSB0) or a pseudo-terminal's slave end (which ignores the
@@ -32,4 +32,4 @@ class SerialPort {
 /// parity and stop bits (LineSettings::validate()). @throws std::runtime_error otherwise.
 void makeRaw(int fd, const device_protocol::LineSettings& line, const std::string& what);
 
-}  // namespace flatsat::magnetometer_bridge
+}  // namespace flatsat::device_bridge

@@ -1,0 +1,72 @@
+// SPDX-License-Identifier: Apache-2.0
+#pragma once
+#include <atomic>
+#include <cstdint>
+#include <optional>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "bus/Node.hpp"
+#include "bus/NodeMain.hpp"
+#include "components/device_bridge/DeviceBridge.hpp"
+#include "components/device_protocol/DeviceProtocol.hpp"
+#include "vehicle/VehicleDescription.hpp"
+
+namespace flatsat::device_sim {
+
+/// Where each published field of a device's topic comes from in the truth.
+struct TruthSource {
+  std::size_t topic_leaf = 0;  // index into the topic's leaves
+  std::size_t truth_leaf = 0;  // the truth's leaf of the same name
+  double noise = 0.0;          // [topic unit] 1σ white noise, >= 0
+};
+
+struct DeviceSimParams {
+  device_bridge::DeviceBridgeParams mounting;  // how the device sits in the body (as built: the truth's)
+  device_protocol::DeviceProtocol protocol;    // its frame, line and topic (deploy/devices/*.yaml)
+  device_bridge::FrameMapping mapping;         // where its frame carries the topic's fields
+  std::vector<TruthSource> sources;            // every published field but `valid`
+  std::size_t topic_leaves = 0;                // [-] how many leaves the topic has
+  std::optional<std::size_t> valid_leaf;       // the topic's `valid`: 1, or 0 out of the field of view
+  /// A Sun sensor head: the Sun is measured only within this cone about the boresight and
+  /// out of eclipse; elsewhere the device says invalid and sends a zero vector.
+  std::optional<double> fov_half_angle_rad;    // [rad] (0, π/2]
+  Eigen::Vector3d boresight_B = Eigen::Vector3d::UnitX();  // [-] unit, body axes
+  std::uint32_t truth_divider = 1; // [-] one frame every this many truth samples, >= 1
+  double corrupt_fraction = 0.0;   // [-] share of frames sent corrupted (bad check, garbage, cut), 0..1
+  std::string link;                // pseudo-terminal slave path published as this symlink
+  std::uint64_t seed = 1;          // [-] noise and corruption
+};
+
+/// Device simulator: plays a described device's end of a serial line on a pseudo-terminal,
+/// for its bridge to read in place of a real unit on /dev/ttyUSB*. It measures the truth
+/// (flatsat/truth: each published field is the truth's field of the same name, plus white
+/// noise) and sends the frames its description gives (deploy/devices/*.yaml), in the device's
+/// axes, clipped at full scale; a share of them corrupted on purpose to exercise the parser.
+class DeviceSimNode final : public bus::Node {
+ public:
+  DeviceSimNode(bus::Bus& bus, bus::NodeOptions options, const DeviceSimParams& params);
+  ~DeviceSimNode() override;
+  void run();  // until SIGINT/SIGTERM
+
+ private:
+  void send(const msg::TruthState& truth);  // on the reader's thread
+  std::vector<double> measure(const msg::TruthState& truth);
+
+  DeviceSimParams params_;
+  int master_ = -1, slave_ = -1;
+  std::mt19937_64 random_;
+  std::uint32_t sequence_ = 0;
+  std::vector<std::size_t> measured_bytes_;  // offsets of the published fields' bytes: where a bit flips
+  std::uint64_t truth_seen_ = 0;
+  std::atomic<std::uint64_t> sent_{0}, corrupted_{0}, dropped_{0};
+  bus::ReaderOf<bus::topics::kTruth> truth_;
+};
+
+DeviceSimParams readParams(const bus::Scenario& scenario, const vehicle::Vehicle& vehicle, const bus::NodeArgs& args,
+                           bus::ConfigProblems& problems);
+
+}  // namespace flatsat::device_sim

@@ -1,0 +1,4 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "components/Processes.hpp"
+
+int main(int argc, char** argv) { return flatsat::device_sim::runProcess(argc, argv); }

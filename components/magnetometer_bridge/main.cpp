@@ -1,4 +1,0 @@
-// SPDX-License-Identifier: Apache-2.0
-#include "components/Processes.hpp"
-
-int main(int argc, char** argv) { return flatsat::magnetometer_bridge::runProcess(argc, argv); }
