@@ -154,7 +154,20 @@ void addOwnership(nlohmann::ordered_json& s, const bus::Scenario& scenario, cons
   s["topic_producers"] = producers;
   nlohmann::ordered_json roles = nlohmann::ordered_json::object();
   for (const auto& c : scenario.components) roles[c.name] = c.role;
+  // A program is off the bus: what it did is what its bridges published.
+  nlohmann::ordered_json programs = nlohmann::ordered_json::object();
+  for (const auto& program : scenario.programs) {
+    roles[program.name] = "program";
+    nlohmann::ordered_json topics = nlohmann::ordered_json::object();
+    for (const auto& [topic, sources] : producers.items()) {
+      for (const auto& bridge : program.bridges) {
+        if (std::find(sources.begin(), sources.end(), bridge) != sources.end()) topics[topic] = bridge;
+      }
+    }
+    programs[program.name] = {{"command", program.command}, {"topics", topics}};
+  }
   s["roles"] = roles;
+  if (!scenario.programs.empty()) s["programs"] = programs;
 }
 
 }  // namespace

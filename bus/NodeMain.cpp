@@ -94,14 +94,19 @@ BusOptions processBusOptions(const Scenario& scenario, const NodeArgs& args,
   options.tuning.data_sharing = !args.checkpoint && !args.restarted;  // the launcher may restart it
   useNetwork(options, networkFromEnvironment());
   const bool lockstep = scenario.pacing == Pacing::kLockstep;
-  // Shared-memory acknowledgements speed a lockstep rig whose every process the launcher
-  // owns. One it does not own (role: external) can die holding a shared-memory port's
-  // lock, and Fast DDS 2.9.1 aborts the peers waiting on that lock after its 1 s
-  // interprocess timeout: before the 3 s lease names the one that died (seen: a SIGKILLed
-  // external wheel_tach took the unloading controller with it). Such rigs keep UDP, as
-  // paced ones do (Bus.cpp).
+  // Shared memory (transport, data sharing and its acknowledgements) speeds a lockstep
+  // rig whose every process the launcher owns. One it does not own (role: external) can
+  // die holding a shared-memory segment's lock, and Fast DDS 2.9.1 aborts the peers
+  // waiting on that lock after its 1 s interprocess timeout: before the 3 s lease names the
+  // one that died (seen: a SIGKILLed external wheel_tach took the unloading controller,
+  // then, with acknowledgements alone moved to UDP, the dynamics server with it). Such rigs
+  // talk UDP on loopback only, as an external process on another host would anyway.
   const bool any_external = std::any_of(scenario.components.begin(), scenario.components.end(),
                                         [](const ComponentEntry& c) { return !c.launched; });
+  if (lockstep && any_external) {
+    options.shared_memory = false;
+    options.tuning.data_sharing = false;
+  }
   options.acks_over_shm = lockstep && !any_external;
   // A sink the time master waits for (its trail bounds how far it lags), with
   // data sharing to every writer: DDS Security turns data sharing off

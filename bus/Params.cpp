@@ -326,4 +326,16 @@ void ParamReader::read(const std::string& key, std::string& value) {
   value = node.Scalar();
 }
 
+void ParamReader::read(const std::string& key, std::vector<std::string>& value) {
+  const YAML::Node node = lookup(key);
+  if (!node.IsDefined() || node.IsNull()) return;
+  if (!node.IsSequence()) return problem(key, "expected a list of strings");
+  std::vector<std::string> words;
+  for (const auto& element : node) {
+    if (!element.IsScalar()) return problem(key, "expected a list of strings");
+    words.push_back(element.Scalar());
+  }
+  value = std::move(words);
+}
+
 }  // namespace flatsat::bus

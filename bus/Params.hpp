@@ -62,6 +62,7 @@ class ParamReader {
   void read(const std::string& key, std::uint32_t& value);
   void read(const std::string& key, std::uint64_t& value);
   void read(const std::string& key, std::string& value);
+  void read(const std::string& key, std::vector<std::string>& value);
 
   const std::string& file() const { return file_; }
   std::string keyPath(const std::string& key) const;

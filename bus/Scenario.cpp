@@ -83,6 +83,38 @@ std::vector<BusFault> readBusFaults(ParamReader& top) {
   return faults;
 }
 
+std::vector<ProgramEntry> readPrograms(ParamReader& top, const Scenario& scenario) {
+  std::vector<ProgramEntry> programs;
+  for (auto& entry : top.list("programs")) {
+    ProgramEntry program;
+    entry.read("name", program.name);
+    entry.read("command", program.command);
+    entry.read("bridges", program.bridges);
+    for (const auto& bridge : program.bridges) {
+      const auto it = std::find_if(scenario.components.begin(), scenario.components.end(),
+                                   [&](const ComponentEntry& c) { return c.name == bridge; });
+      if (it == scenario.components.end() || it->role != "bridge") {
+        entry.problem("bridges", "'" + bridge + "' is not a component of this scenario with role: bridge");
+      }
+    }
+    const bool word = !program.name.empty() &&
+                      std::all_of(program.name.begin(), program.name.end(), [](char c) {
+                        return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-';
+                      });
+    if (!word) entry.problem("name", "'" + program.name + "' is not a plain word (letters, digits, _ and -)");
+    if (scenario.hasComponent(program.name)) entry.problem("name", "'" + program.name + "' is a component's name");
+    for (const auto& other : programs) {
+      if (other.name == program.name) entry.problem("name", "'" + program.name + "' is given twice");
+    }
+    if (program.command.empty() || program.command.front().empty()) entry.problem("command", "must give the program to run");
+    // A program free-runs on the wall clock: only a paced rig keeps time with it.
+    if (scenario.pacing != Pacing::kPaced) entry.problem("", "programs run only beside a paced rig (mode: paced)");
+    entry.finish();
+    programs.push_back(program);
+  }
+  return programs;
+}
+
 }  // namespace
 
 namespace {
@@ -191,6 +223,11 @@ Scenario loadScenario(const std::string& path) {
       continue;
     }
     component.name = entry.first.as<std::string>();
+    // Every sample is stamped with its producer's name (SampleHeader.source, Common.idl).
+    if (component.name.size() > kMaxComponentName) {
+      top.problem("components", "'" + component.name + "' is longer than " + std::to_string(kMaxComponentName) +
+                                    " characters: a sample's header could not name it");
+    }
     ParamReader reader(entry.second, path, "components." + component.name, problems);
     reader.read("rate_divider", component.rate_divider);
     bool external = false;
@@ -214,6 +251,7 @@ Scenario loadScenario(const std::string& path) {
     scenario.components.push_back(component);
   }
   scenario.bus_faults = readBusFaults(top);
+  scenario.programs = readPrograms(top, scenario);
   for (const auto& section : kPlantSections) top.section(section);
   top.finish();
   if (!problems.empty()) throw ScenarioError(path + ": invalid scenario:\n" + problems.joined());

@@ -33,7 +33,21 @@ struct ComponentEntry {
   std::string role = "emulated";
 };
 
+/// A program the launcher starts beside the rig's components that is not on the bus:
+/// a flight computer's own software talking to the rig over serial lines, a gateway.
+struct ProgramEntry {
+  std::string name;                  ///< a plain word, not a component's; its log is <run>/logs/<name>.log
+  /// argv; "{run}" in any argument is the run directory. A bare first word is looked
+  /// up beside the flatsat tool first, then on PATH.
+  std::vector<std::string> command;
+  /// The bridges (role: bridge components) that carry what it writes onto the bus: the
+  /// summary names the topics they published as the program's.
+  std::vector<std::string> bridges;
+};
+
 inline constexpr std::uint32_t kMaxSpacecraft = 64;
+/// The longest component name: SampleHeader.source holds 32 characters, NUL padded.
+inline constexpr std::size_t kMaxComponentName = 31;
 
 /// The top level of a scenario file. Component parameters stay as YAML
 /// nodes: each component reads its own section (componentParams()).
@@ -53,6 +67,8 @@ struct Scenario {
   double acquisition_s = 0.0;      ///< [s] metrics ignore pointing before this
   double liveliness_lease_s = 1.0; ///< [s] paced: a silent producer is dead after this, 0.05..60
   std::vector<ComponentEntry> components;
+  /// `programs:` started with the rig, paced only; one that exits before the run ends fails it.
+  std::vector<ProgramEntry> programs;
   /// `bus_faults:` samples of a topic dropped, delayed or duplicated (bus/BusFaults.hpp).
   std::vector<BusFault> bus_faults;
 

@@ -13,6 +13,7 @@
 #include "components/estimator/EstimatorNode.hpp"
 #include "components/gyro/GyroNode.hpp"
 #include "components/magnetometer/MagnetometerNode.hpp"
+#include "components/device_bridge/BridgeableTopics.hpp"
 #include "components/device_bridge/DeviceBridgeNode.hpp"
 #include "components/device_sim/DeviceSimNode.hpp"
 #include "components/recorder/RecorderNode.hpp"
@@ -120,12 +121,13 @@ const std::vector<ComponentKind>& componentKinds() {
                                 "clock, over the emulator at a higher DDS ownership strength",
                                 {std::string(bus::topics::kStepGrant.name)}));  // DeviceBridgeNode::grants_
     }
-    for (const auto* sensor : {&bus::topics::kMagnetometer.producer, &bus::topics::kSunSensor.producer,
-                               &bus::topics::kGyro.producer, &bus::topics::kWheelTach.producer,
-                               &bus::topics::kStarTracker.producer}) {
-      all.push_back(processOnly(std::string(*sensor) + "_device", "flatsat-device_sim", device_sim::readParams,
+    for (const auto* sensor : {&bus::topics::kMagnetometer.name, &bus::topics::kSunSensor.name, &bus::topics::kGyro.name,
+                               &bus::topics::kWheelTach.name, &bus::topics::kStarTracker.name}) {
+      all.push_back(processOnly(device_bridge::bridgeableProducer(*sensor) + "_device", "flatsat-device_sim",
+                                device_sim::readParams,
                                 "a device stand-in: it plays a real unit on a pseudo-terminal, on the wall clock",
-                                {std::string(bus::topics::kTruth.name)}));  // DeviceSimNode::truth_
+                                // DeviceSimNode's readers: the truth, or (source: bus) its sensor's topic
+                                {std::string(bus::topics::kTruth.name), std::string(*sensor)}));
     }
     return all;
   }();

@@ -372,51 +372,32 @@ def cpp_string(text):
     return '"' + text.replace("\\", "\\\\").replace('"', '\\"') + '"'
 
 
-def leaves(parser, field, prefix=""):
-    """(name, unit, description) of every JSON leaf of a field, in toJson order."""
-    base = prefix + field.name
-    names = [base]
-    is_char = field.type_name == "char"
-    dims = field.dims[:-1] if is_char and field.dims else field.dims
-    for n in dims:
-        names = [f"{name}[{i}]" for name in names for i in range(n)]
-    entity = parser.types.get(field.type_name)
-    out = []
-    for name in names:
-        if isinstance(entity, Struct):
-            for sub in entity.fields:
-                out.extend(leaves(parser, sub, name + "."))
-        else:
-            out.append((name, field.unit, field.description))
-    return out
-
-
 NUMERIC = PRIMITIVES - {"char", "wchar", "string", "long double"}
 
 
-def leaf_access(parser, field, base):
-    """(C++ lvalue, settable) of every leaf of a field, aligned with leaves(): settable
-    leaves are numbers and booleans; text and enumerations are not (their lvalue is None)."""
+def leaves(parser, field, prefix="", base="v"):
+    """(name, C++ lvalue, unit, description) of every JSON leaf of a field, in toJson
+    order; the lvalue is None where setLeaf cannot set it (text, enumerations)."""
     is_char = field.type_name == "char"
     dims = field.dims[:-1] if is_char and field.dims else field.dims
-    exprs = [f"{base}.{field.name}()"]
+    pairs = [(prefix + field.name, f"{base}.{field.name}()")]
     for n in dims:
-        exprs = [f"{e}[{i}]" for e in exprs for i in range(n)]
+        pairs = [(f"{name}[{i}]", f"{expr}[{i}]") for name, expr in pairs for i in range(n)]
     entity = parser.types.get(field.type_name)
     out = []
-    for e in exprs:
+    for name, expr in pairs:
         if isinstance(entity, Struct):
             for sub in entity.fields:
-                out.extend(leaf_access(parser, sub, e))
+                out.extend(leaves(parser, sub, name + ".", expr))
         else:
             numeric = field.type_name in NUMERIC and not is_char
-            out.append(e if numeric else None)
+            out.append((name, expr if numeric else None, field.unit, field.description))
     return out
 
 
 def leaf_access_code(parser, s):
     """leafValue/setLeaf of a struct: one case per numeric leaf."""
-    access = [a for f in s.fields for a in leaf_access(parser, f, "v")]
+    access = [lvalue for f in s.fields for _, lvalue, _, _ in leaves(parser, f)]
     get = [f"template <> std::optional<double> leafValue<{s.cpp}>(const {s.cpp}& v, std::size_t leaf) {{\n",
            "  switch (leaf) {\n"]
     put = [f"template <> bool setLeaf<{s.cpp}>({s.cpp}& v, std::size_t leaf, double value) {{\n",
@@ -643,7 +624,7 @@ def generate(parser, idl_files, name, include_prefix):
         cpp.append(f"template <> const std::vector<FieldInfo>& leafFields<{s.cpp}>() {{\n"
                    "  static const std::vector<FieldInfo> fields{\n")
         for f in s.fields:
-            for leaf, unit, description in leaves(parser, f):
+            for leaf, _, unit, description in leaves(parser, f):
                 cpp.append(f"      {{{cpp_string(leaf)}, {cpp_string(unit)}, "
                            f"{cpp_string(description)}}},\n")
         cpp.append("  };\n  return fields;\n}\n\n")

@@ -42,7 +42,25 @@ struct Child {
   std::string log;
   bool required = true;  // a stepped component: its death stops the rig
   bool restarted = false;  // started again mid-run: it takes its checkpoint back
+  bool program = false;    // a scenario's program (not on the bus): its exit mid-run fails the run
 };
+
+/// A program's argv: "{run}" replaced by the run directory, a bare first word found
+/// beside the flatsat tool when it is there (else posix_spawnp looks on PATH).
+std::vector<std::string> programArgv(const bus::ProgramEntry& program, const std::string& run_dir,
+                                     const std::string& bin_dir) {
+  std::vector<std::string> argv;
+  for (std::string word : program.command) {
+    for (auto at = word.find("{run}"); at != std::string::npos; at = word.find("{run}", at + run_dir.size())) {
+      word.replace(at, 5, run_dir);
+    }
+    argv.push_back(word);
+  }
+  if (argv.front().find('/') == std::string::npos && fs::exists(fs::path(bin_dir) / argv.front())) {
+    argv.front() = (fs::path(bin_dir) / argv.front()).string();
+  }
+  return argv;
+}
 
 std::string tail(const std::string& path, std::size_t lines) {
   std::ifstream in(path);
@@ -295,6 +313,13 @@ LaunchResult launch(const bus::Scenario& scenario, const LaunchOptions& options)
       startChild(component);
     }
   }
+  for (const auto& program : scenario.programs) {
+    Child child{program.name, -1, true, (logs / (program.name + ".log")).string(), false};
+    child.program = true;
+    child.pid = spawnLogged(programArgv(program, options.run_dir, options.bin_dir), child.log);
+    spdlog::info("started program {} (pid {})", program.name, child.pid);
+    children.push_back(child);
+  }
   result.processes = children.size() + late.size();
   for (const auto& c : scenario.components) result.processes += !c.launched && c.scheduled;
 
@@ -329,6 +354,14 @@ LaunchResult launch(const bus::Scenario& scenario, const LaunchOptions& options)
       int status = 0;
       if (!c.running || waitpid(c.pid, &status, WNOHANG) != c.pid) continue;
       c.running = false;
+      if (c.program && !rigStopping()) {
+        // Not on the bus, so no emulator stands behind it: the rig has lost what it did.
+        if (exited_failure.empty()) {
+          exited_failure = "program '" + c.name + "' exited (" + describeExit(status) + ") before the run ended; last lines of " +
+                           c.log + ":\n" + tail(c.log, 8);
+        }
+        continue;
+      }
       if (!c.required) {
         // A bridge that dies is the swap-in case: readers fall back to the emulator.
         spdlog::warn("bridge {} exited ({}); the emulator takes over", c.name, describeExit(status));

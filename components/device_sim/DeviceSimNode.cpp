@@ -43,29 +43,71 @@ std::optional<std::size_t> leafIndex(const std::vector<msg::FieldInfo>& leaves, 
 DeviceSimNode::DeviceSimNode(bus::Bus& bus, bus::NodeOptions options, const DeviceSimParams& params)
     : Node(bus, std::move(options)),
       params_(params),
-      random_(params.seed),
-      truth_(bus, bus::topics::kTruth, [this](const msg::TruthState& t) { send(t); }) {
-  master_ = ::posix_openpt(O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
-  if (master_ < 0 || ::grantpt(master_) != 0 || ::unlockpt(master_) != 0) {
-    throw std::runtime_error("cannot open a pseudo-terminal: " + std::string(std::strerror(errno)));
+      random_(params.seed) {
+  if (!params.port.empty()) {
+    // A real line: the frames go out of a serial port to whatever listens (a flight computer).
+    master_ = ::open(params.port.c_str(), O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
+    if (master_ < 0) throw std::runtime_error(params.port + ": cannot open: " + std::strerror(errno));
+    device_bridge::makeRaw(master_, params.protocol.line, params.port);
+    spdlog::info("{}: {} on {} at {} baud", name(), params.protocol.name, params.port, params.protocol.line.baud);
+  } else {
+    master_ = ::posix_openpt(O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
+    if (master_ < 0 || ::grantpt(master_) != 0 || ::unlockpt(master_) != 0) {
+      throw std::runtime_error("cannot open a pseudo-terminal: " + std::string(std::strerror(errno)));
+    }
+    const std::string slave = ::ptsname(master_);
+    // Held open so the line exists (and stays raw) while no bridge listens.
+    slave_ = ::open(slave.c_str(), O_RDWR | O_NOCTTY | O_CLOEXEC);
+    if (slave_ < 0) throw std::runtime_error(slave + ": cannot open: " + std::strerror(errno));
+    device_bridge::makeRaw(slave_, params.protocol.line, slave);
+    std::filesystem::remove(params.link);
+    std::filesystem::create_symlink(slave, params.link);
+    spdlog::info("{}: {} on {} (linked as {})", name(), params.protocol.name, slave, params.link);
   }
-  const std::string slave = ::ptsname(master_);
-  // Held open so the line exists (and stays raw) while no bridge listens.
-  slave_ = ::open(slave.c_str(), O_RDWR | O_NOCTTY | O_CLOEXEC);
-  if (slave_ < 0) throw std::runtime_error(slave + ": cannot open: " + std::strerror(errno));
-  device_bridge::makeRaw(slave_, params.protocol.line, slave);
   for (const auto& field : params.protocol.frame.fields) {
     if (field.maps_to.empty()) continue;
     for (std::size_t b = field.at; b < field.end(); ++b) measured_bytes_.push_back(b);
   }
-  std::filesystem::remove(params.link);
-  std::filesystem::create_symlink(slave, params.link);
-  spdlog::info("{}: {} on {} (linked as {})", name(), params.protocol.name, slave, params.link);
+  spdlog::info("{}: frames from the {}", name(),
+               params.source == "bus" ? "emulator's " + params.protocol.topic : std::string("truth"));
+  // Readers last: their callbacks use the line.
+  if (params.source == "bus") {
+    topic_reader_ = subscribeTopic(bus);
+  } else {
+    truth_ = std::make_unique<bus::ReaderOf<bus::topics::kTruth>>(bus, bus::topics::kTruth, [this](const msg::TruthState& t) {
+      if (truth_seen_++ % params_.truth_divider == 0) send(measure(t));
+    });
+  }
+}
+
+std::shared_ptr<void> DeviceSimNode::subscribeTopic(bus::Bus& bus) {
+  std::shared_ptr<void> reader;
+  device_bridge::withBridgeableTopic(params_.protocol.topic, [&](const auto& def) {
+    using Def = std::remove_cvref_t<decltype(def)>;
+    using Sample = typename Def::Type;
+    reader = std::shared_ptr<bus::Reader<Def>>(new bus::Reader<Def>(bus, def, [this](const Sample& sample) {
+      std::vector<double> values(params_.topic_leaves, 0.0);
+      for (std::size_t i = 0; i < values.size(); ++i) {
+        values[i] = msg::leafValue(sample, i).value_or(0.0);
+        // What arrives on the bus is checked, not trusted: a NaN never reaches the line.
+        if (!std::isfinite(values[i])) {
+          ++refused_;
+          return;
+        }
+      }
+      // A sample the emulator marks invalid is a dropout: a device whose frame has no
+      // valid flag sends nothing then.
+      const bool valid = !params_.valid_leaf || values[*params_.valid_leaf] != 0.0;
+      if (!valid && !params_.valid_in_frame) return;
+      if (seen_++ % params_.truth_divider == 0) send(values);
+    }, {}, {}, trustFor(def)));
+  });
+  return reader;
 }
 
 DeviceSimNode::~DeviceSimNode() {
   std::error_code ignored;
-  std::filesystem::remove(params_.link, ignored);
+  if (params_.port.empty()) std::filesystem::remove(params_.link, ignored);
   if (slave_ >= 0) ::close(slave_);
   if (master_ >= 0) ::close(master_);
 }
@@ -88,11 +130,11 @@ std::vector<double> DeviceSimNode::measure(const msg::TruthState& truth) {
   return values;
 }
 
-void DeviceSimNode::send(const msg::TruthState& truth) {
-  if (truth_seen_++ % params_.truth_divider != 0) return;
+void DeviceSimNode::send(const std::vector<double>& topic_values) {
+  std::lock_guard lock(send_mutex_);
   const auto& spec = params_.protocol.frame;
   auto frame = device_protocol::encodeFrame(
-      spec, device_bridge::deviceFrame(measure(truth), params_.mounting, spec, params_.mapping, sequence_++));
+      spec, device_bridge::deviceFrame(topic_values, params_.mounting, spec, params_.mapping, sequence_++));
   std::uniform_real_distribution<double> uniform(0.0, 1.0);
   if (uniform(random_) < params_.corrupt_fraction) {
     // One of three line faults: a flipped bit of a measurement (the check catches it),
@@ -118,12 +160,12 @@ void DeviceSimNode::send(const msg::TruthState& truth) {
 }
 
 void DeviceSimNode::run() {
-  publishHealth(msg::ComponentState::RUNNING, 0, "device on " + params_.link);
+  publishHealth(msg::ComponentState::RUNNING, 0, "device on " + (params_.port.empty() ? params_.link : params_.port));
   while (!interrupted()) {
     std::this_thread::sleep_for(std::chrono::seconds(1));
     publishHealth(msg::ComponentState::RUNNING, sent_,
                   "frames sent " + std::to_string(sent_) + ", corrupted " + std::to_string(corrupted_) +
-                      ", dropped " + std::to_string(dropped_));
+                      ", dropped " + std::to_string(dropped_) + ", refused " + std::to_string(refused_));
   }
   publishHealth(msg::ComponentState::STOPPED, sent_, "stopped");
 }
@@ -139,6 +181,9 @@ DeviceSimParams readParams(const bus::Scenario& scenario, const vehicle::Vehicle
                               p.mounting.q_body_sensor);
   p.link = device_bridge::defaultDevicePath(args, p.protocol.name);
   r.read("link", p.link);
+  r.read("port", p.port);
+  r.read("source", p.source);
+  if (p.source != "truth" && p.source != "bus") r.problem("source", "'" + p.source + "' is neither truth nor bus");
   r.read("truth_divider", p.truth_divider);
   r.read("corrupt_fraction", p.corrupt_fraction, "-");
   if (p.truth_divider < 1) r.problem("truth_divider", "must be >= 1");
@@ -148,6 +193,8 @@ DeviceSimParams readParams(const bus::Scenario& scenario, const vehicle::Vehicle
     const auto& truth_leaves = msg::leafFields<msg::TruthState>();
     p.topic_leaves = leaves->size();
     p.valid_leaf = leafIndex(*leaves, "valid");
+    p.valid_in_frame = p.valid_leaf && std::any_of(p.mapping.leaves.begin(), p.mapping.leaves.end(),
+                                                   [&](const auto& leaf) { return leaf.leaf == *p.valid_leaf; });
     // noise: {<topic field>: 1σ in its unit}, for the fields the frame carries.
     auto noise = r.section("noise");
     std::set<std::string> noisy;
@@ -155,6 +202,7 @@ DeviceSimParams readParams(const bus::Scenario& scenario, const vehicle::Vehicle
       const std::string name((*leaves)[leaf.leaf].name);
       if (name == "valid") continue;
       const auto truth_leaf = leafIndex(truth_leaves, name);
+      if (p.source == "bus") continue;  // the emulator's sample has every field
       if (!truth_leaf) {
         r.problem("protocol", "'" + p.protocol.file + "' carries '" + name +
                                   "', which the truth does not: a device simulator cannot measure it");

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 #pragma once
 #include <atomic>
+#include <memory>
+#include <mutex>
 #include <cstdint>
 #include <optional>
 #include <random>
@@ -31,21 +33,29 @@ struct DeviceSimParams {
   std::vector<TruthSource> sources;            // every published field but `valid`
   std::size_t topic_leaves = 0;                // [-] how many leaves the topic has
   std::optional<std::size_t> valid_leaf;       // the topic's `valid`: 1, or 0 out of the field of view
+  bool valid_in_frame = false;                 // the frame carries `valid` (else an invalid sample sends nothing)
   /// A Sun sensor head: the Sun is measured only within this cone about the boresight and
   /// out of eclipse; elsewhere the device says invalid and sends a zero vector.
   std::optional<double> fov_half_angle_rad;    // [rad] (0, π/2]
   Eigen::Vector3d boresight_B = Eigen::Vector3d::UnitX();  // [-] unit, body axes
-  std::uint32_t truth_divider = 1; // [-] one frame every this many truth samples, >= 1
+  std::uint32_t truth_divider = 1; // [-] one frame every this many truth (or topic) samples, >= 1
   double corrupt_fraction = 0.0;   // [-] share of frames sent corrupted (bad check, garbage, cut), 0..1
   std::string link;                // pseudo-terminal slave path published as this symlink
+  std::string port;                // a real serial port to send on instead ("" : a pseudo-terminal at `link`)
   std::uint64_t seed = 1;          // [-] noise and corruption
+  /// truth: an ideal device measuring the truth (noise added); bus: the samples the
+  /// topic's emulator publishes, framed as the device would send them (a flight
+  /// computer's side of the line, its sensors emulated by the rig).
+  std::string source = "truth";
 };
 
 /// Device simulator: plays a described device's end of a serial line on a pseudo-terminal,
-/// for its bridge to read in place of a real unit on /dev/ttyUSB*. It measures the truth
-/// (flatsat/truth: each published field is the truth's field of the same name, plus white
-/// noise) and sends the frames its description gives (deploy/devices/*.yaml), in the device's
-/// axes, clipped at full scale; a share of them corrupted on purpose to exercise the parser.
+/// for its bridge (or a flight computer) to read in place of a real unit on /dev/ttyUSB*.
+/// It measures the truth (flatsat/truth: each published field is the truth's field of the
+/// same name, plus white noise), or takes the emulator's samples of its topic
+/// (`source: bus`), and sends the frames its description gives (deploy/devices/*.yaml), in
+/// the device's axes, clipped at full scale; a share of them corrupted on purpose to
+/// exercise the parser.
 class DeviceSimNode final : public bus::Node {
  public:
   DeviceSimNode(bus::Bus& bus, bus::NodeOptions options, const DeviceSimParams& params);
@@ -53,17 +63,21 @@ class DeviceSimNode final : public bus::Node {
   void run();  // until SIGINT/SIGTERM
 
  private:
-  void send(const msg::TruthState& truth);  // on the reader's thread
+  void send(const std::vector<double>& topic_values);  // on a reader's thread
   std::vector<double> measure(const msg::TruthState& truth);
+  /// The emulator's samples of the description's topic (source: bus), framed as they come.
+  std::shared_ptr<void> subscribeTopic(bus::Bus& bus);
 
   DeviceSimParams params_;
   int master_ = -1, slave_ = -1;
   std::mt19937_64 random_;
   std::uint32_t sequence_ = 0;
   std::vector<std::size_t> measured_bytes_;  // offsets of the published fields' bytes: where a bit flips
-  std::uint64_t truth_seen_ = 0;
-  std::atomic<std::uint64_t> sent_{0}, corrupted_{0}, dropped_{0};
-  bus::ReaderOf<bus::topics::kTruth> truth_;
+  std::uint64_t truth_seen_ = 0, seen_ = 0;  // truth samples, topic samples
+  std::atomic<std::uint64_t> sent_{0}, corrupted_{0}, dropped_{0}, refused_{0};
+  std::mutex send_mutex_;  // truth and topic samples come on their readers' threads
+  std::unique_ptr<bus::ReaderOf<bus::topics::kTruth>> truth_;
+  std::shared_ptr<void> topic_reader_;
 };
 
 DeviceSimParams readParams(const bus::Scenario& scenario, const vehicle::Vehicle& vehicle, const bus::NodeArgs& args,

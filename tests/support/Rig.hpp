@@ -97,7 +97,8 @@ inline const std::string kRtpsFilter = "udp and udp[8:4] = 0x52545053";
 /// not count the rig of another test running beside it on its own Docker or namespace network.
 inline std::string rtpsFilterOfTestDomain() {
   const std::uint32_t first = 7400 + 250 * testDomain();
-  return kRtpsFilter + " and portrange " + std::to_string(first) + "-" + std::to_string(first + 499);
+  // A domain owns 250 ports (RTPS 9.6.1.1: PB 7400, DG 250); the next one is another test's.
+  return kRtpsFilter + " and portrange " + std::to_string(first) + "-" + std::to_string(first + 249);
 }
 
 }  // namespace flatsat::test

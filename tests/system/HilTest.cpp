@@ -7,6 +7,8 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <future>
 #include <map>
 #include <string>
@@ -138,4 +140,69 @@ TEST_CASE("three described sensors through their serial bridges keep their topic
     CHECK(missed > 0);  // a corrupted frame is a sample lost: the counter says so
   }
   std::filesystem::remove_all(out);
+}
+
+TEST_CASE("a flight computer that speaks no DDS flies the rig over serial lines, and its death fails the run",
+          "[device_bridge][system][paced][hil]") {
+  // hil_flight_computer.yaml: examples/flight_computer reads the emulated sensors' frames
+  // and writes wheel-torque and dipole frames; two bridges put those on the bus.
+  const std::string scenario = std::string(FLATSAT_SCENARIO_DIR) + "/hil_flight_computer.yaml";
+  const std::string out = test::freshDir("hil-fc");
+  const auto s = test::runScenario(scenario, out, "--set duration_s=40", true).summary;
+  INFO(s.dump(2));
+  CHECK(s["roles"]["flight_computer"] == "program");
+  CHECK(s["programs"]["flight_computer"]["topics"] ==
+        nlohmann::json({{"flatsat/wheel_torque_cmd", "attitude_controller_bridge"},
+                        {"flatsat/dipole_cmd", "unloading_controller_bridge"}}));
+  // The usual error of the default rig on its own controllers is ~0.14 deg at most.
+  CHECK(s["pointing_error_deg_max"].get<double>() < 0.5);
+  // The rig's own attitude controller runs beneath the bridge: the bridge's commands won
+  // from its first one, and no hand-over back happened.
+  const auto& switches = s["ownership_switches"];
+  int back = 0;
+  for (const auto& sw : switches) back += sw["from"].get<std::string>().ends_with("_bridge") ? 1 : 0;
+  CHECK(back == 0);
+  REQUIRE(test::runCommand(test::kFlatsat + " export " + out + "/recording.sqlite --json -o " + out +
+                           "/export -t wheel_torque_cmd -t dipole_cmd")
+              .exit_code == 0);
+  std::size_t from_board = 0, total = 0;
+  for (const auto& row : test::exportedRows(out + "/export", "wheel_torque_cmd")) {
+    ++total;
+    from_board += row["header"]["source"] == "attitude_controller_bridge" ? 1 : 0;
+  }
+  CHECK(from_board > 300);  // of 400 steps, less the start-up
+  CHECK(from_board + 20 > total);
+  std::size_t dipoles = 0;
+  for (const auto& row : test::exportedRows(out + "/export", "dipole_cmd")) {
+    dipoles += row["header"]["source"] == "unloading_controller_bridge" && row["active"].get<bool>() ? 1 : 0;
+  }
+  CHECK(dipoles > 300);  // with every wheel command, the law updated at 1 Hz
+  // The board's own account: every input decoded, no frame refused.
+  std::ifstream log(out + "/logs/flight_computer.log");
+  const std::string board((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
+  INFO(board);
+  for (const std::string input : {"magnetometer", "gyro", "sun_sensor", "wheel_tach"}) {
+    long good = -1, bad = -1;
+    const auto at = board.rfind(" " + input + " ");
+    REQUIRE(at != std::string::npos);
+    REQUIRE(std::sscanf(board.c_str() + at + input.size() + 2, "%ld good %ld bad", &good, &bad) == 2);
+    CHECK(good > 300);
+    CHECK(bad == 0);
+  }
+  std::filesystem::remove_all(out);
+
+  // No emulator stands behind a program: its death mid-run fails the run, naming it.
+  const std::string killed = test::freshDir("hil-fc-killed");
+  auto run = std::async(std::launch::async, [&] {
+    test::exportTestDomain();
+    return test::runCommand(test::runLine(scenario, killed, "--set duration_s=60"));
+  });
+  std::this_thread::sleep_for(std::chrono::seconds(15));
+  CHECK(test::runCommand("pkill -KILL -f 'example_flight_compute[r] .*" + killed + "'").exit_code == 0);
+  const auto result = run.get();
+  INFO(result.output);
+  CHECK(result.exit_code != 0);
+  CHECK(result.output.find("program 'flight_computer' exited (killed by signal 9) before the run ended") !=
+        std::string::npos);
+  std::filesystem::remove_all(killed);
 }

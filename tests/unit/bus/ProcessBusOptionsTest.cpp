@@ -75,7 +75,10 @@ TEST_CASE("a lockstep rig acknowledges over shared memory only when the launcher
   CHECK(processBusOptions(lockstep, estimator, kEmulatorStrength).acks_over_shm);
   // An external process may be killed holding a shared-memory port's lock (NodeMain.cpp).
   lockstep.components.back().launched = false;
-  CHECK_FALSE(processBusOptions(lockstep, estimator, kEmulatorStrength).acks_over_shm);
+  const auto with_external = processBusOptions(lockstep, estimator, kEmulatorStrength);
+  CHECK_FALSE(with_external.acks_over_shm);
+  CHECK_FALSE(with_external.shared_memory);  // nor data over it: any shared lock can be held by the dead
+  CHECK_FALSE(with_external.tuning.data_sharing);
   Scenario paced = lockstep;
   paced.pacing = Pacing::kPaced;
   paced.components.back().launched = true;

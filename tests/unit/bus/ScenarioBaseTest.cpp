@@ -58,3 +58,43 @@ TEST_CASE("a scenario with a base takes its keys, mappings merged and the rest r
                     Catch::Matchers::Contains("folder.yaml: is a directory, not a scenario file"));
   std::filesystem::remove_all(dir);
 }
+
+TEST_CASE("a scenario's programs: argv, their bridges, and what is refused with its line", "[bus][scenario]") {
+  const auto dir = std::filesystem::temp_directory_path() / ("scenario-programs-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const auto write = [&](const std::string& name, const std::string& text) {
+    std::ofstream(dir / name) << text;
+    return (dir / name).string();
+  };
+  const std::string rig =
+      "name: p\nmode: paced\nduration_s: 10\ncomponents:\n  dynamics_server: {}\n  recorder: {}\n"
+      "  attitude_controller_bridge: {role: bridge}\n";
+  const Scenario good = loadScenario(write(
+      "good.yaml", rig + "programs:\n  - {name: fc, command: [board, --line, \"{run}/a.pty\"], "
+                         "bridges: [attitude_controller_bridge]}\n"));
+  REQUIRE(good.programs.size() == 1);
+  CHECK(good.programs[0].command == std::vector<std::string>{"board", "--line", "{run}/a.pty"});
+  CHECK(good.programs[0].bridges == std::vector<std::string>{"attitude_controller_bridge"});
+
+  const std::string bad = write(
+      "bad.yaml", rig + "programs:\n"
+                        "  - {name: recorder, command: [x]}\n"
+                        "  - {name: \"two words\", command: []}\n"
+                        "  - {name: fc, command: [x], bridges: [recorder]}\n");
+  try {
+    loadScenario(bad);
+    FAIL("a bad programs list was taken");
+  } catch (const ScenarioError& e) {
+    const std::string what = e.what();
+    INFO(what);
+    CHECK(what.find("bad.yaml:9") != std::string::npos);  // each problem at its own entry's line
+    CHECK(what.find("'recorder' is a component's name") != std::string::npos);
+    CHECK(what.find("'two words' is not a plain word") != std::string::npos);
+    CHECK(what.find("command: must give the program to run") != std::string::npos);
+    CHECK(what.find("'recorder' is not a component of this scenario with role: bridge") != std::string::npos);
+  }
+  const std::string lockstep = write("lockstep.yaml", "name: l\nduration_s: 10\ncomponents:\n  dynamics_server: {}\n"
+                                                      "programs:\n  - {name: fc, command: [x]}\n");
+  CHECK_THROWS_WITH(loadScenario(lockstep), Catch::Matchers::Contains("programs run only beside a paced rig"));
+  std::filesystem::remove_all(dir);
+}
