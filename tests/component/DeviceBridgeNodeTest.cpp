@@ -238,3 +238,26 @@ TEST_CASE("Sun sensor device and bridge nodes carry the Sun direction, and say w
   CHECK(seen > 0);
   CHECK(unseen > 0);
 }
+
+TEST_CASE("wheel tachometer device and bridge nodes carry the four wheel speeds through a serial line to the bus",
+          "[device_bridge][component][dds][hil]") {
+  const auto run = runThroughLine<bus::topics::kWheelTach>("wheel_tach", Eigen::Quaterniond::Identity(), [](int i) {
+    msg::TruthState t;
+    t.wheel_count(4);
+    bus::put(t.wheel_speed_rad_s(), Eigen::Vector4d(10.0 + 0.1 * i, -20.0, 0.0, 150.0 - i));
+    return t;
+  });
+  CHECK(run.said_late);
+  REQUIRE(run.readings.size() >= 5);
+  for (const auto& r : run.readings) {
+    CHECK(r.valid());
+    // 1 mrad/s counts: every wheel within half a count of one truth sample, all four of the same one.
+    double nearest = INFINITY;
+    for (const auto& t : run.sent) {
+      double worst = 0.0;
+      for (std::size_t w = 0; w < 4; ++w) worst = std::max(worst, std::abs(r.wheel_speed_rad_s()[w] - t.wheel_speed_rad_s()[w]));
+      nearest = std::min(nearest, worst);
+    }
+    CHECK(nearest <= 0.5e-3 + 1e-12);
+  }
+}
