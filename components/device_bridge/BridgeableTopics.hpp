@@ -3,6 +3,7 @@
 // What a device description may name as its topic: a stepped topic of the registry
 // with a producer, which a `<producer>_bridge` may write over at the bridge strength
 // (bus::Node::trustFor). Its fields are the leaves of its IDL type (msg::leafFields).
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -30,6 +31,17 @@ inline const std::vector<msg::FieldInfo>* bridgeableLeaves(std::string_view topi
   const std::vector<msg::FieldInfo>* leaves = nullptr;
   withBridgeableTopic(topic, [&](const auto& def) { leaves = &msg::leafFields<typename std::remove_cvref_t<decltype(def)>::Type>(); });
   return leaves;
+}
+
+/// The unit of field `field` of a bridgeable topic, as its IDL gives it ("T" for
+/// "b_body_T[0]"); nullopt when the topic is not bridgeable or has no such field
+/// (device_protocol::FieldUnitLookup).
+inline std::optional<std::string> bridgeableFieldUnit(const std::string& topic, const std::string& field) {
+  const auto* leaves = bridgeableLeaves(topic);
+  for (std::size_t i = 0; leaves != nullptr && i < leaves->size(); ++i) {
+    if ((*leaves)[i].name == field) return std::string((*leaves)[i].unit);
+  }
+  return std::nullopt;
 }
 
 /// The producer of a bridgeable topic ("magnetometer"); empty for any other.

@@ -164,16 +164,8 @@ void readProtocol(const bus::Scenario& scenario, const std::string& component, c
     baud = 0;
     r.read("baud", *baud);
   }
-  const auto units = [](const std::string& topic, const std::string& field) -> std::optional<std::string> {
-    const auto leaves = bridgeableLeaves(topic);
-    if (!leaves) return std::nullopt;
-    for (const auto& leaf : *leaves) {
-      if (leaf.name == field) return std::string(leaf.unit);
-    }
-    return std::nullopt;
-  };
   const std::size_t before = problems.list().size();
-  protocol = device_protocol::readDeviceProtocol(device_protocol::findDeviceDescription(scenario.file, file), units, problems);
+  protocol = device_protocol::readDeviceProtocol(device_protocol::findDeviceDescription(scenario.file, file), bridgeableFieldUnit, problems);
   if (problems.list().size() > before) return r.problem("protocol", "'" + file + "' is not a usable description (above)");
   const auto leaves = bridgeableLeaves(protocol.topic);
   if (!leaves) {

@@ -22,15 +22,14 @@
 #include "components/device_bridge/BridgeableTopics.hpp"
 #include "components/device_bridge/DeviceBridgeNode.hpp"
 #include "components/device_bridge/SerialPort.hpp"
+#include "components/sun_sensor/SunSensorModel.hpp"
 #include "vehicle/VehicleReader.hpp"
 
 namespace flatsat::device_sim {
 namespace {
 
-/// The Sun sensor's field of view when none is given: the emulator's (SunSensorModel).
-constexpr double kDefaultFovHalfAngleRad = 60.0 * M_PI / 180.0;
-/// Below this Sun fraction the head sees no Sun (SunSensorModel's min_illumination).
-constexpr double kMinIllumination = 0.5;
+/// The Sun sensor emulator's head: its field of view and the Sun fraction it needs.
+const sun_sensor::SunSensorParams kSunHead{};
 
 std::optional<std::size_t> leafIndex(const std::vector<msg::FieldInfo>& leaves, const std::string& name) {
   const auto it = std::find_if(leaves.begin(), leaves.end(), [&](const msg::FieldInfo& f) { return f.name == name; });
@@ -117,7 +116,7 @@ std::vector<double> DeviceSimNode::measure(const msg::TruthState& truth) {
   bool valid = true;
   if (params_.fov_half_angle_rad) {
     const Eigen::Vector3d sun_B = bus::vec3(truth.sun_body_unit());
-    valid = truth.illumination() >= kMinIllumination &&
+    valid = truth.illumination() >= kSunHead.min_illumination &&
             sun_B.normalized().dot(params_.boresight_B) >= std::cos(*params_.fov_half_angle_rad);
   }
   if (params_.valid_leaf) values[*params_.valid_leaf] = valid ? 1.0 : 0.0;
@@ -217,7 +216,7 @@ DeviceSimParams readParams(const bus::Scenario& scenario, const vehicle::Vehicle
     noise.finish();
   }
   if (p.protocol.topic == bus::topics::kSunSensor.name) {
-    p.fov_half_angle_rad = kDefaultFovHalfAngleRad;
+    p.fov_half_angle_rad = kSunHead.fov_half_angle_rad;
     r.read("fov_half_angle_rad", *p.fov_half_angle_rad, "rad");
     if (!(*p.fov_half_angle_rad > 0.0 && *p.fov_half_angle_rad <= M_PI / 2)) {
       r.problem("fov_half_angle_rad", "must be in (0, 90 deg]");

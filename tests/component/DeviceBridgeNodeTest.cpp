@@ -41,14 +41,7 @@ constexpr std::uint64_t kGrantedStep = 5;
 void useShippedProtocol(const std::string& device, device_protocol::DeviceProtocol& protocol,
                         device_bridge::FrameMapping& mapping) {
   bus::ConfigProblems problems;
-  const auto unit_of = [](const std::string& topic, const std::string& field) -> std::optional<std::string> {
-    const auto* leaves = device_bridge::bridgeableLeaves(topic);
-    for (std::size_t i = 0; leaves != nullptr && i < leaves->size(); ++i) {
-      if ((*leaves)[i].name == field) return std::string((*leaves)[i].unit);
-    }
-    return std::nullopt;
-  };
-  protocol = device_protocol::readDeviceProtocol(FLATSAT_SOURCE_DIR "/deploy/devices/" + device + ".yaml", unit_of,
+  protocol = device_protocol::readDeviceProtocol(FLATSAT_SOURCE_DIR "/deploy/devices/" + device + ".yaml", device_bridge::bridgeableFieldUnit,
                                                  problems);
   INFO(problems.joined());
   REQUIRE(problems.empty());
