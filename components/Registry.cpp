@@ -70,8 +70,31 @@ ComponentKind processOnly(const std::string& name, const std::string& executable
           {}, reason, std::move(reads)};
 }
 
+/// A reaction wheel unit's bridge (a wheel_tach_bridge whose description takes commands)
+/// and the plant's wheels_follow go together: without it the unit's torques never reach
+/// the body; with it and no unit, the plant would follow a tachometer.
+void checkWheelUnit(const bus::Scenario& scenario, const vehicle::Vehicle& vehicle, bus::ConfigProblems& problems) {
+  const std::string bridge = std::string(bus::topics::kWheelTach.producer) + "_bridge";
+  if (!scenario.hasComponent(bridge) || !scenario.hasComponent("dynamics_server")) return;
+  bus::ConfigProblems reported_by_each;
+  const auto unit = device_bridge::readParams(scenario, vehicle, {scenario.file, bridge, ""}, reported_by_each);
+  const auto server = dynamics_server::readParams(scenario, vehicle, {scenario.file, "dynamics_server", ""},
+                                                  reported_by_each);
+  if (!reported_by_each.list().empty()) return;
+  const bool actuator = unit.command_mapping.has_value();
+  const auto where = scenario.file + ": components.";
+  if (actuator && server.wheels_follow != bridge) {
+    problems.add(where + "dynamics_server: " + bridge + " commands a reaction wheel unit: set wheels_follow: " + bridge +
+                 " so that the plant's wheels turn as the unit's do");
+  } else if (!actuator && server.wheels_follow == bridge) {
+    problems.add(where + "dynamics_server: wheels_follow: " + bridge + " reads a tachometer (" + unit.protocol.file +
+                 " has no command frame): the plant would follow speeds nobody drives");
+  }
+}
+
 /// What components need of each other's settings, checked where the whole rig is seen.
 void checkRig(const bus::Scenario& scenario, const vehicle::Vehicle& vehicle, bus::ConfigProblems& problems) {
+  checkWheelUnit(scenario, vehicle, problems);
   if (!scenario.hasComponent("station_keeping")) return;
   const auto where = scenario.file + ": components.station_keeping: ";
   if (vehicle.truth.orbit_track.propagator != sim::OrbitPropagation::kNumerical) {
@@ -116,10 +139,13 @@ const std::vector<ComponentKind>& componentKinds() {
       if (std::find(producers.begin(), producers.end(), producer) == producers.end()) producers.push_back(producer);
     });
     for (const auto& producer : producers) {
+      // DeviceBridgeNode's readers: the grants, and an actuator's command topic.
+      std::vector<std::string> reads = {std::string(bus::topics::kStepGrant.name)};
+      if (const auto command = device_bridge::actuatorCommandTopic(producer); !command.empty()) reads.push_back(command);
       all.push_back(processOnly(producer + "_bridge", "flatsat-device_bridge", device_bridge::readParams,
                                 "a hardware bridge: it publishes as its serial device delivers, on the wall "
                                 "clock, over the emulator at a higher DDS ownership strength",
-                                {std::string(bus::topics::kStepGrant.name)}));  // DeviceBridgeNode::grants_
+                                std::move(reads)));
     }
     for (const auto* sensor : {&bus::topics::kMagnetometer.name, &bus::topics::kSunSensor.name, &bus::topics::kGyro.name,
                                &bus::topics::kWheelTach.name, &bus::topics::kStarTracker.name}) {

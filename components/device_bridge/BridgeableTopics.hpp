@@ -51,4 +51,13 @@ inline std::string bridgeableProducer(std::string_view topic) {
   return producer;
 }
 
+/// The command topic an actuator bridge `<producer>_bridge` may take and write to its
+/// device as command frames, with what the device reports published as `producer`'s
+/// topic: a reaction wheel takes the controller's wheel torques and reports its speeds
+/// as the tachometers do. Empty: `producer`'s device is a sensor only.
+inline std::string actuatorCommandTopic(std::string_view producer) {
+  if (producer == bus::topics::kWheelTach.producer) return std::string(bus::topics::kWheelTorqueCmd.name);
+  return {};
+}
+
 }  // namespace flatsat::device_bridge

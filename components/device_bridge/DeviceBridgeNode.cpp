@@ -28,6 +28,12 @@ std::string producerOf(const std::string& component) {
   return component;
 }
 
+std::vector<std::string> leafNames(const std::vector<msg::FieldInfo>& leaves) {
+  std::vector<std::string> names;
+  for (const auto& leaf : leaves) names.emplace_back(leaf.name);
+  return names;
+}
+
 }  // namespace
 
 void refuseDeviceKeys(bus::ParamReader& r) {
@@ -48,7 +54,45 @@ DeviceBridgeNode::DeviceBridgeNode(bus::Bus& bus, bus::NodeOptions options, cons
         std::lock_guard lock(grant_mutex_);
         grant_ = Grant{{g.header().step(), g.header().sim_time_ns(), g.step_period_ns()},
                        std::chrono::steady_clock::now()};
-      }, {}, {}, trustFor(bus::topics::kStepGrant)) {}
+      }, {}, {}, trustFor(bus::topics::kStepGrant)),
+      commands_(subscribeCommands(bus)) {}
+
+DeviceBridgeNode::~DeviceBridgeNode() {
+  commands_.reset();  // no command callback once the port goes
+}
+
+std::shared_ptr<void> DeviceBridgeNode::subscribeCommands(bus::Bus& bus) {
+  if (!params_.command_mapping) return nullptr;
+  std::shared_ptr<void> reader;
+  withBridgeableTopic(params_.protocol.command_topic, [&](const auto& def) {
+    using Def = std::remove_cvref_t<decltype(def)>;
+    using Sample = typename Def::Type;
+    const std::size_t leaves = msg::leafFields<Sample>().size();
+    reader = std::shared_ptr<bus::Reader<Def>>(new bus::Reader<Def>(bus, def, [this, leaves](const Sample& sample) {
+      std::vector<double> values(leaves, 0.0);
+      for (std::size_t i = 0; i < leaves; ++i) {
+        values[i] = msg::leafValue(sample, i).value_or(0.0);
+        // A command with a NaN in it never reaches a device: the device would act on it.
+        if (!std::isfinite(values[i])) {
+          ++commands_refused_;
+          return;
+        }
+      }
+      writeCommand(values, sample.header().step());
+    }, {}, {}, trustFor(def)));
+  });
+  return reader;
+}
+
+void DeviceBridgeNode::writeCommand(const std::vector<double>& command_values, std::uint64_t step) {
+  std::lock_guard lock(port_mutex_);
+  if (!port_) return;  // the line is not open yet: no device to command
+  last_command_step_ = step;
+  const auto& spec = *params_.protocol.command;
+  const auto frame = device_protocol::encodeFrame(
+      spec, deviceFrame(command_values, params_.bridge, spec, *params_.command_mapping, command_sequence_++));
+  ++(port_->write(frame) ? commands_sent_ : commands_unsent_);
+}
 
 std::function<bool(const BridgeSample&, const bus::StepContext&)> DeviceBridgeNode::publisherFor(
     const std::string& topic) {
@@ -82,12 +126,31 @@ std::optional<bus::StepContext> DeviceBridgeNode::stepNow() const {
                           grant_->step.period_ns};
 }
 
+std::optional<bus::StepContext> DeviceBridgeNode::stampFor() const {
+  auto now = stepNow();
+  if (!now || params_.protocol.reply != device_protocol::ReplyMode::kPerCommand) return now;
+  // An answer to the command of step k is the unit's state as step k + 1 begins, as the
+  // plant's truth of k + 1 is its answer to the commands of k: the next step's
+  // consumers (the controller) take it at once, not after waiting for their own command.
+  std::lock_guard lock(port_mutex_);
+  if (!last_command_step_) return now;
+  const auto next = *last_command_step_ + 1;
+  now->sim_time_ns += (static_cast<std::int64_t>(next) - static_cast<std::int64_t>(now->step)) * now->period_ns;
+  now->step = next;
+  return now;
+}
+
 std::string DeviceBridgeNode::counters() const {
   const auto& c = parser_.counts();
   // Health messages hold 95 characters (Health.idl): short words, room for large counts.
-  return "frames " + std::to_string(c.frames) + ", bad check " + std::to_string(c.bad_checksum) + ", bad header " +
-         std::to_string(c.bad_header) + ", skipped " + std::to_string(c.skipped_bytes) + " B, bad value " +
-         std::to_string(c.bad_value + unrepresentable_) + ", missed " + std::to_string(missed_);
+  std::string line = "frames " + std::to_string(c.frames) + ", bad: check " + std::to_string(c.bad_checksum) +
+                     " header " + std::to_string(c.bad_header) + " value " + std::to_string(c.bad_value + unrepresentable_) +
+                     ", skipped " + std::to_string(c.skipped_bytes) + " B, missed " + std::to_string(missed_);
+  if (params_.command_mapping) {
+    line += ", cmds " + std::to_string(commands_sent_) + "/" +
+            std::to_string(commands_sent_ + commands_unsent_ + commands_refused_);
+  }
+  return line;
 }
 
 void DeviceBridgeNode::run() {
@@ -99,10 +162,18 @@ void DeviceBridgeNode::run() {
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
-  SerialPort port(params_.device, params_.protocol.line);
+  {
+    std::lock_guard lock(port_mutex_);
+    port_ = std::make_unique<SerialPort>(params_.device, params_.protocol.line);
+  }
+  SerialPort& port = *port_;
   spdlog::info("{}: reading {} at {} baud, frames per {} onto {}", name(), params_.device, params_.protocol.line.baud,
                params_.protocol.file, params_.protocol.topic);
   publishHealth(msg::ComponentState::RUNNING, 0, "reading " + params_.device);
+  if (params_.command_mapping) {
+    spdlog::info("{}: commands from {} as {} frames to {}", name(), params_.protocol.command_topic,
+                 params_.protocol.command->name, params_.device);
+  }
 
   std::array<std::uint8_t, 512> buffer{};
   using Clock = std::chrono::steady_clock;
@@ -121,7 +192,7 @@ void DeviceBridgeNode::run() {
       last_frame = Clock::now();
       const auto sample = bridge_.step(*frame);
       missed_ += sample.missed_samples;
-      const auto step = stepNow();
+      const auto step = stampFor();
       if (!step) continue;  // the rig has not started stepping: no time to stamp it with
       if (!publish_(sample, *step) && unrepresentable_++ == 0) {
         spdlog::warn("{}: a frame holds a value its field of {} cannot take (a fraction for an integer, or out of "
@@ -141,12 +212,14 @@ void DeviceBridgeNode::run() {
     }
     if (Clock::now() >= next_health) {
       char silence[64] = "";
-      if (late) std::snprintf(silence, sizeof silence, "late: no good frame for %.1f s; ", silent_s());
+      if (late) std::snprintf(silence, sizeof silence, "late %.1f s; ", silent_s());
       publishHealth(msg::ComponentState::RUNNING, parser_.counts().frames, silence + counters());
       next_health = Clock::now() + std::chrono::seconds(1);
     }
   }
-  publishHealth(msg::ComponentState::STOPPED, parser_.counts().frames, "stopped");
+  publishHealth(msg::ComponentState::STOPPED, parser_.counts().frames, "stopped; " + counters());
+  std::lock_guard lock(port_mutex_);
+  port_.reset();
 }
 
 std::string defaultDevicePath(const bus::NodeArgs& args, const std::string& device_name) {
@@ -155,7 +228,7 @@ std::string defaultDevicePath(const bus::NodeArgs& args, const std::string& devi
 
 void readProtocol(const bus::Scenario& scenario, const std::string& component, const vehicle::SensorMountings& mountings,
                   bus::ParamReader& r, bus::ConfigProblems& problems, device_protocol::DeviceProtocol& protocol,
-                  FrameMapping& mapping, Eigen::Quaterniond& q_body_sensor) {
+                  FrameMapping& mapping, std::optional<FrameMapping>& command_mapping, Eigen::Quaterniond& q_body_sensor) {
   const std::string producer = producerOf(component);
   std::string file = producer + ".yaml";
   r.read("protocol", file);
@@ -184,13 +257,25 @@ void readProtocol(const bus::Scenario& scenario, const std::string& component, c
     r.problem("protocol", "'" + file + "' gives sensor_axes '" + protocol.sensor_axes +
                               "': the mountings a frame's axes may name are: magnetometer (none: body axes)");
   }
-  std::vector<std::string> names;
-  for (const auto& leaf : *leaves) names.emplace_back(leaf.name);
   std::string why;
-  if (const auto found = FrameMapping::of(protocol.frame, names, why)) {
+  if (const auto found = FrameMapping::of(protocol.frame, leafNames(*leaves), why)) {
     mapping = *found;
   } else {
     r.problem("protocol", "'" + file + "': " + why);
+  }
+  if (protocol.command) {
+    const std::string allowed = actuatorCommandTopic(producer);
+    if (protocol.command_topic != allowed) {
+      return r.problem("protocol", "'" + file + "' takes commands from " + protocol.command_topic + ": " +
+                                       (allowed.empty() ? producer + "'s device reports only (no actuator reports as " +
+                                                              protocol.topic + ")"
+                                                        : "the actuator reporting as " + protocol.topic + " takes " + allowed));
+    }
+    if (const auto found = FrameMapping::of(*protocol.command, leafNames(*bridgeableLeaves(allowed)), why)) {
+      command_mapping = *found;
+    } else {
+      r.problem("protocol", "'" + file + "': command: " + why);
+    }
   }
   if (baud) protocol.line.baud = *baud;
   r.problems(protocol.line.validate());
@@ -202,7 +287,8 @@ DeviceBridgeNodeParams readParams(const bus::Scenario& scenario, const vehicle::
   auto r = scenario.componentParams(args.name, problems);
   refuseDeviceKeys(r);
   // Flight software's belief of the mounting: what a bridge on the flight side knows.
-  readProtocol(scenario, args.name, vehicle.onboard.sensors, r, problems, p.protocol, p.mapping, p.bridge.q_body_sensor);
+  readProtocol(scenario, args.name, vehicle.onboard.sensors, r, problems, p.protocol, p.mapping, p.command_mapping,
+               p.bridge.q_body_sensor);
   p.device = defaultDevicePath(args, p.protocol.name.empty() ? producerOf(args.name) : p.protocol.name);
   r.read("device", p.device);
   r.read("late_after_s", p.late_after_s, "s");

@@ -91,4 +91,8 @@ long SerialPort::read(std::span<std::uint8_t> buffer, std::chrono::milliseconds 
   return -1;  // hang-up: the device end closed
 }
 
+bool SerialPort::write(std::span<const std::uint8_t> bytes) {
+  return ::write(fd_, bytes.data(), bytes.size()) == static_cast<ssize_t>(bytes.size());
+}
+
 }  // namespace flatsat::device_bridge

@@ -23,6 +23,9 @@ class SerialPort {
   /// Bytes read into buffer within the timeout (0: none came); -1 when the line
   /// is gone (the other end closed).
   long read(std::span<std::uint8_t> buffer, std::chrono::milliseconds timeout);
+  /// Writes `bytes` whole without waiting; false when the line is gone or its buffer
+  /// cannot take them now (a device that stopped reading, as a real UART overruns).
+  bool write(std::span<const std::uint8_t> bytes);
 
  private:
   int fd_ = -1;

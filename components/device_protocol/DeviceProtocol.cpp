@@ -150,6 +150,37 @@ FieldSpec readField(bus::ParamReader& f, const std::string& topic, bool frame_li
   return field;
 }
 
+/// The frame under `key` of `r` (frame: or command:), its fields carrying `topic`'s.
+void readFrame(bus::ParamReader& r, const std::string& key, const std::string& topic, const FieldUnitLookup& unit_of,
+               FrameSpec& frame) {
+  auto f = r.section(key);
+  f.read("name", frame.name);
+  std::string sync;
+  f.read("sync", sync);
+  if (const auto bytes = hexBytes(sync)) {
+    frame.sync = *bytes;
+  } else {
+    f.problem("sync", "'" + sync + "' is not bytes in hex, two digits each (\"AA 55\")");
+  }
+  bool little_endian = true;
+  readByteOrder(f, little_endian);
+  auto field_readers = f.list("fields");
+  for (auto& field : field_readers) frame.fields.push_back(readField(field, topic, little_endian, unit_of));
+  auto c = f.section("checksum");
+  readChecksum(c, frame);
+  c.finish();
+  for (const SpecProblem& p : frame.validate()) {
+    if (p.field >= 0) {
+      field_readers[static_cast<std::size_t>(p.field)].problem(p.key, p.reason);
+    } else if (p.key == "checksum") {
+      c.problem("", p.reason);
+    } else {
+      f.problem(p.key, p.reason);
+    }
+  }
+  f.finish();
+}
+
 }  // namespace
 
 std::vector<std::string> LineSettings::validate() const {
@@ -198,33 +229,23 @@ DeviceProtocol readDeviceProtocol(const std::string& path, const FieldUnitLookup
   line.problems(protocol.line.validate());
   line.finish();
 
-  auto f = r.section("frame");
-  FrameSpec& frame = protocol.frame;
-  f.read("name", frame.name);
-  std::string sync;
-  f.read("sync", sync);
-  if (const auto bytes = hexBytes(sync)) {
-    frame.sync = *bytes;
-  } else {
-    f.problem("sync", "'" + sync + "' is not bytes in hex, two digits each (\"AA 55\")");
+  readFrame(r, "frame", protocol.topic, unit_of, protocol.frame);
+  r.read("command_topic", protocol.command_topic);
+  if (r.has("command")) {
+    if (protocol.command_topic.empty()) r.problem("command", "a command frame needs command_topic: the bus topic it carries");
+    protocol.command.emplace();
+    readFrame(r, "command", protocol.command_topic, unit_of, *protocol.command);
+  } else if (!protocol.command_topic.empty()) {
+    r.problem("command_topic", "an actuator's command topic needs its command: frame");
   }
-  bool little_endian = true;
-  readByteOrder(f, little_endian);
-  auto field_readers = f.list("fields");
-  for (auto& field : field_readers) frame.fields.push_back(readField(field, protocol.topic, little_endian, unit_of));
-  auto c = f.section("checksum");
-  readChecksum(c, frame);
-  c.finish();
-  for (const SpecProblem& p : frame.validate()) {
-    if (p.field >= 0) {
-      field_readers[static_cast<std::size_t>(p.field)].problem(p.key, p.reason);
-    } else if (p.key == "checksum") {
-      c.problem("", p.reason);
-    } else {
-      f.problem(p.key, p.reason);
-    }
+  std::string reply = "periodic";
+  r.read("reply", reply);
+  if (reply == "per_command") {
+    protocol.reply = ReplyMode::kPerCommand;
+    if (!protocol.command) r.problem("reply", "per_command answers command frames: the description has no command:");
+  } else if (reply != "periodic") {
+    r.problem("reply", "'" + reply + "' is neither periodic nor per_command");
   }
-  f.finish();
   r.finish();
   return protocol;
 }

@@ -23,15 +23,25 @@ struct LineSettings {
   std::vector<std::string> validate() const;
 };
 
+/// When a device sends its frame.
+enum class ReplyMode {
+  kPeriodic,    // at its own rate (a sensor streaming)
+  kPerCommand,  // one frame in answer to each command frame (request/response)
+};
+
 /// A device's protocol as its description file gives it (deploy/devices/*.yaml,
-/// docs/devices.md): the line, the topic its frames carry, and the frame.
+/// docs/devices.md): the line, the topic its frames carry, and the frame; for an
+/// actuator also the topic whose samples it takes as command frames.
 struct DeviceProtocol {
   std::string file;         // where it was read from
   std::string name;         // the device, e.g. "magnetometer"
   std::string topic;        // the bus topic its readings map onto, e.g. "flatsat/magnetometer"
   std::string sensor_axes;  // vectors arrive in this mounting's axes (spacecraft.sensors.<name>); "" : body
   LineSettings line;
-  FrameSpec frame;
+  FrameSpec frame;          // what the device sends
+  std::string command_topic;       // an actuator's command topic, e.g. "flatsat/wheel_torque_cmd"; "" : a sensor
+  std::optional<FrameSpec> command;  // what the device takes (with command_topic)
+  ReplyMode reply = ReplyMode::kPeriodic;
 };
 
 /// The unit of a topic's field ("b_body_T[0]" → "T"), as bus::ParamReader spells units;

@@ -2,6 +2,7 @@
 #include "components/device_sim/DeviceSimNode.hpp"
 
 #include <fcntl.h>
+#include <poll.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -37,6 +38,35 @@ std::optional<std::size_t> leafIndex(const std::vector<msg::FieldInfo>& leaves, 
   return static_cast<std::size_t>(it - leaves.begin());
 }
 
+/// An actuator's stand-in: a reaction wheel unit (the only actuator a description may
+/// describe: device_bridge::actuatorCommandTopic), its rotors the truth's as built.
+void readWheel(const bus::Scenario& scenario, const vehicle::Vehicle& vehicle, const std::vector<msg::FieldInfo>& leaves,
+               bus::ParamReader& r, DeviceSimParams& p) {
+  if (p.source != "truth") {
+    return r.problem("source", "a reaction wheel unit reports its own rotors' speeds: its source is truth (its clock and start)");
+  }
+  const auto& body = vehicle.truth.body;
+  ReactionWheelDeviceParams wheel;
+  wheel.wheel_count = body.wheel_count;
+  wheel.inertia_kg_m2 = body.wheel_inertia_kg_m2;
+  wheel.max_torque_Nm = body.wheel_count > 0 ? body.wheel_max_torque_Nm.head(body.wheel_count).minCoeff() : 0.0;
+  r.read("max_torque_Nm", wheel.max_torque_Nm, "N m");
+  r.read("response_delay_s", wheel.response_delay_s, "s");
+  if (body.wheel_count < 1) return r.problem("protocol", "a reaction wheel unit needs the spacecraft's wheels (spacecraft.wheels)");
+  r.problems(wheel.validate());
+  const auto* command_leaves = device_bridge::bridgeableLeaves(p.protocol.command_topic);
+  for (std::size_t i = 0; i < 4; ++i) {
+    const std::string k = "[" + std::to_string(i) + "]";
+    const auto speed = leafIndex(leaves, "wheel_speed_rad_s" + k);
+    const auto torque = leafIndex(*command_leaves, "torque_Nm" + k);
+    if (!speed || !torque) return r.problem("protocol", "'" + p.protocol.file + "': a reaction wheel reports wheel_speed_rad_s and takes torque_Nm");
+    p.speed_leaves[i] = *speed;
+    p.torque_leaves[i] = *torque;
+  }
+  p.step_period_s = scenario.step_s;
+  p.wheel = wheel;
+}
+
 }  // namespace
 
 DeviceSimNode::DeviceSimNode(bus::Bus& bus, bus::NodeOptions options, const DeviceSimParams& params)
@@ -68,13 +98,20 @@ DeviceSimNode::DeviceSimNode(bus::Bus& bus, bus::NodeOptions options, const Devi
     for (std::size_t b = field.at; b < field.end(); ++b) measured_bytes_.push_back(b);
   }
   spdlog::info("{}: frames from the {}", name(),
-               params.source == "bus" ? "emulator's " + params.protocol.topic : std::string("truth"));
+               params.wheel ? std::string("unit's own rotors, commanded on the line")
+               : params.source == "bus" ? "emulator's " + params.protocol.topic : std::string("truth"));
+  if (params.wheel) {
+    wheel_.emplace(*params.wheel);
+    command_parser_.emplace(*params.protocol.command);
+    command_decoder_.emplace(params.mounting, *params.command_mapping);
+  }
   // Readers last: their callbacks use the line.
   if (params.source == "bus") {
     topic_reader_ = subscribeTopic(bus);
   } else {
     truth_ = std::make_unique<bus::ReaderOf<bus::topics::kTruth>>(bus, bus::topics::kTruth, [this](const msg::TruthState& t) {
-      if (truth_seen_++ % params_.truth_divider == 0) send(measure(t));
+      if (wheel_) return onTruth(t);
+      if (truth_seen_++ % params_.truth_divider == 0) send(measure(t, nullptr));
     });
   }
 }
@@ -105,13 +142,55 @@ std::shared_ptr<void> DeviceSimNode::subscribeTopic(bus::Bus& bus) {
 }
 
 DeviceSimNode::~DeviceSimNode() {
+  // No reader callback may write to the line once it is closed.
+  truth_.reset();
+  topic_reader_.reset();
   std::error_code ignored;
   if (params_.port.empty()) std::filesystem::remove(params_.link, ignored);
   if (slave_ >= 0) ::close(slave_);
   if (master_ >= 0) ::close(master_);
 }
 
-std::vector<double> DeviceSimNode::measure(const msg::TruthState& truth) {
+void DeviceSimNode::onTruth(const msg::TruthState& truth) {
+  std::lock_guard lock(send_mutex_);
+  const double t = static_cast<double>(truth.header().sim_time_ns()) * 1e-9;
+  if (!last_truth_) wheel_->reset(bus::vec4(truth.wheel_speed_rad_s()), t);
+  last_truth_ = truth;
+  last_truth_seen_ = std::chrono::steady_clock::now();
+  const Eigen::Vector4d speeds = wheel_->step(t);
+  if (params_.protocol.reply == device_protocol::ReplyMode::kPeriodic && truth_seen_++ % params_.truth_divider == 0) {
+    sendLocked(measure(truth, &speeds));
+  }
+}
+
+double DeviceSimNode::deviceTime() const {
+  const double since = std::chrono::duration<double>(std::chrono::steady_clock::now() - last_truth_seen_).count();
+  return static_cast<double>(last_truth_->header().sim_time_ns()) * 1e-9 + std::clamp(since, 0.0, params_.step_period_s);
+}
+
+void DeviceSimNode::onCommand(const device_protocol::RawValues& frame) {
+  const auto decoded = command_decoder_->step(frame);
+  Eigen::Vector4d torque = Eigen::Vector4d::Zero();
+  for (const auto& [leaf, value] : decoded.leaves) {
+    for (int i = 0; i < 4; ++i) {
+      if (leaf == params_.torque_leaves[static_cast<std::size_t>(i)]) torque(i) = value;
+    }
+  }
+  std::lock_guard lock(send_mutex_);
+  if (!last_truth_) return;  // the rig has not started: the unit is not powered
+  const double t = deviceTime();
+  if (!wheel_->command(torque, t)) {
+    ++refused_;
+    return;
+  }
+  ++commands_;
+  if (params_.protocol.reply == device_protocol::ReplyMode::kPerCommand) {
+    const Eigen::Vector4d speeds = wheel_->step(t);
+    sendLocked(measure(*last_truth_, &speeds));
+  }
+}
+
+std::vector<double> DeviceSimNode::measure(const msg::TruthState& truth, const Eigen::Vector4d* wheel_speeds) {
   std::vector<double> values(params_.topic_leaves, 0.0);
   bool valid = true;
   if (params_.fov_half_angle_rad) {
@@ -122,15 +201,23 @@ std::vector<double> DeviceSimNode::measure(const msg::TruthState& truth) {
   if (params_.valid_leaf) values[*params_.valid_leaf] = valid ? 1.0 : 0.0;
   if (!valid) return values;  // an invalid measurement carries zeros
   for (const auto& source : params_.sources) {
-    std::normal_distribution<double> noise(0.0, source.noise);
-    values[source.topic_leaf] =
-        msg::leafValue(truth, source.truth_leaf).value_or(0.0) + (source.noise > 0.0 ? noise(random_) : 0.0);
+    values[source.topic_leaf] = msg::leafValue(truth, source.truth_leaf).value_or(0.0);
+  }
+  for (std::size_t i = 0; wheel_speeds != nullptr && i < 4; ++i) {
+    values[params_.speed_leaves[i]] = (*wheel_speeds)(static_cast<Eigen::Index>(i));
+  }
+  for (const auto& source : params_.sources) {
+    if (source.noise > 0.0) values[source.topic_leaf] += std::normal_distribution<double>(0.0, source.noise)(random_);
   }
   return values;
 }
 
 void DeviceSimNode::send(const std::vector<double>& topic_values) {
   std::lock_guard lock(send_mutex_);
+  sendLocked(topic_values);
+}
+
+void DeviceSimNode::sendLocked(const std::vector<double>& topic_values) {
   const auto& spec = params_.protocol.frame;
   auto frame = device_protocol::encodeFrame(
       spec, device_bridge::deviceFrame(topic_values, params_.mounting, spec, params_.mapping, sequence_++));
@@ -160,13 +247,35 @@ void DeviceSimNode::send(const std::vector<double>& topic_values) {
 
 void DeviceSimNode::run() {
   publishHealth(msg::ComponentState::RUNNING, 0, "device on " + (params_.port.empty() ? params_.link : params_.port));
+  const auto counters = [&] {
+    std::string line = "frames sent " + std::to_string(sent_) + ", corrupted " + std::to_string(corrupted_) +
+                       ", dropped " + std::to_string(dropped_) + ", refused " + std::to_string(refused_);
+    if (!command_parser_) return line;
+    const auto& c = command_parser_->counts();
+    return line + "; cmds " + std::to_string(commands_) + ", bad " + std::to_string(c.bad_checksum + c.bad_header + c.bad_value);
+  };
+  using Clock = std::chrono::steady_clock;
+  auto next_health = Clock::now() + std::chrono::seconds(1);
+  std::array<std::uint8_t, 256> buffer{};
   while (!interrupted()) {
-    std::this_thread::sleep_for(std::chrono::seconds(1));
-    publishHealth(msg::ComponentState::RUNNING, sent_,
-                  "frames sent " + std::to_string(sent_) + ", corrupted " + std::to_string(corrupted_) +
-                      ", dropped " + std::to_string(dropped_) + ", refused " + std::to_string(refused_));
+    if (!command_parser_) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    } else {
+      // A unit that takes commands: whatever the other end writes, parsed as it comes.
+      pollfd p{master_, POLLIN, 0};
+      if (::poll(&p, 1, 100) > 0 && (p.revents & POLLIN)) {
+        const ssize_t n = ::read(master_, buffer.data(), buffer.size());
+        for (ssize_t i = 0; i < n; ++i) {
+          if (const auto frame = command_parser_->push(buffer[static_cast<std::size_t>(i)])) onCommand(*frame);
+        }
+      }
+    }
+    if (Clock::now() >= next_health) {
+      publishHealth(msg::ComponentState::RUNNING, sent_, counters());
+      next_health = Clock::now() + std::chrono::seconds(1);
+    }
   }
-  publishHealth(msg::ComponentState::STOPPED, sent_, "stopped");
+  publishHealth(msg::ComponentState::STOPPED, sent_, "stopped; " + counters());
 }
 
 DeviceSimParams readParams(const bus::Scenario& scenario, const vehicle::Vehicle& vehicle, const bus::NodeArgs& args,
@@ -176,7 +285,7 @@ DeviceSimParams readParams(const bus::Scenario& scenario, const vehicle::Vehicle
   auto r = scenario.componentParams(args.name, problems);
   device_bridge::refuseDeviceKeys(r);
   // The unit as it sits (the truth's mounting), not as flight software believes it sits.
-  device_bridge::readProtocol(scenario, args.name, vehicle.truth.sensors, r, problems, p.protocol, p.mapping,
+  device_bridge::readProtocol(scenario, args.name, vehicle.truth.sensors, r, problems, p.protocol, p.mapping, p.command_mapping,
                               p.mounting.q_body_sensor);
   p.link = device_bridge::defaultDevicePath(args, p.protocol.name);
   r.read("link", p.link);
@@ -223,6 +332,7 @@ DeviceSimParams readParams(const bus::Scenario& scenario, const vehicle::Vehicle
     }
     p.boresight_B = vehicle.truth.sensors.sun_sensor_boresight_B;
   }
+  if (p.command_mapping && leaves) readWheel(scenario, vehicle, *leaves, r, p);
   r.problems(p.mounting.validate());
   r.finish();
   return p;

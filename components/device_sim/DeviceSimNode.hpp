@@ -1,11 +1,13 @@
 // SPDX-License-Identifier: Apache-2.0
 #pragma once
+#include <array>
 #include <atomic>
 #include <memory>
 #include <mutex>
 #include <cstdint>
 #include <optional>
 #include <random>
+#include <chrono>
 #include <string>
 #include <vector>
 
@@ -15,6 +17,7 @@
 #include "bus/NodeMain.hpp"
 #include "components/device_bridge/DeviceBridge.hpp"
 #include "components/device_protocol/DeviceProtocol.hpp"
+#include "components/device_sim/ReactionWheelDevice.hpp"
 #include "vehicle/VehicleDescription.hpp"
 
 namespace flatsat::device_sim {
@@ -47,6 +50,13 @@ struct DeviceSimParams {
   /// topic's emulator publishes, framed as the device would send them (a flight
   /// computer's side of the line, its sensors emulated by the rig).
   std::string source = "truth";
+  /// A reaction wheel (a description with a command frame): the unit's drive and rotors.
+  /// Its frames report the rotors' own speeds, which its commands change.
+  std::optional<ReactionWheelDeviceParams> wheel;
+  std::optional<device_bridge::FrameMapping> command_mapping;  // where a command frame carries the command topic's fields
+  std::array<std::size_t, 4> speed_leaves{};    // the topic's wheel_speed_rad_s[i]
+  std::array<std::size_t, 4> torque_leaves{};   // the command topic's torque_Nm[i]
+  double step_period_s = 0.1;                   // [s] the truth's period: the unit's clock between samples
 };
 
 /// Device simulator: plays a described device's end of a serial line on a pseudo-terminal,
@@ -55,7 +65,9 @@ struct DeviceSimParams {
 /// same name, plus white noise), or takes the emulator's samples of its topic
 /// (`source: bus`), and sends the frames its description gives (deploy/devices/*.yaml), in
 /// the device's axes, clipped at full scale; a share of them corrupted on purpose to
-/// exercise the parser.
+/// exercise the parser. A reaction wheel also reads command frames off the line and
+/// reports its rotors' speeds (ReactionWheelDevice), periodically or one frame in answer
+/// to each command (the description's `reply`), on the truth's clock.
 class DeviceSimNode final : public bus::Node {
  public:
   DeviceSimNode(bus::Bus& bus, bus::NodeOptions options, const DeviceSimParams& params);
@@ -64,7 +76,13 @@ class DeviceSimNode final : public bus::Node {
 
  private:
   void send(const std::vector<double>& topic_values);  // on a reader's thread
-  std::vector<double> measure(const msg::TruthState& truth);
+  void sendLocked(const std::vector<double>& topic_values);  // under send_mutex_
+  /// The topic's values an ideal device measures, white noise added; a wheel's speeds its own.
+  std::vector<double> measure(const msg::TruthState& truth, const Eigen::Vector4d* wheel_speeds);
+  void onTruth(const msg::TruthState& truth);                          // on the truth reader's thread
+  void onCommand(const device_protocol::RawValues& frame);             // on run()'s thread
+  /// The unit's clock: the newest truth time plus the wall time since it, up to a period.
+  double deviceTime() const;
   /// The emulator's samples of the description's topic (source: bus), framed as they come.
   std::shared_ptr<void> subscribeTopic(bus::Bus& bus);
 
@@ -75,6 +93,12 @@ class DeviceSimNode final : public bus::Node {
   std::vector<std::size_t> measured_bytes_;  // offsets of the published fields' bytes: where a bit flips
   std::uint64_t truth_seen_ = 0, seen_ = 0;  // truth samples, topic samples
   std::atomic<std::uint64_t> sent_{0}, corrupted_{0}, dropped_{0}, refused_{0};
+  std::optional<ReactionWheelDevice> wheel_;                  // guarded by send_mutex_
+  std::optional<device_protocol::FrameParser> command_parser_;
+  std::optional<device_bridge::DeviceBridge> command_decoder_;
+  std::optional<msg::TruthState> last_truth_;                 // guarded by send_mutex_
+  std::chrono::steady_clock::time_point last_truth_seen_;     // guarded by send_mutex_
+  std::atomic<std::uint64_t> commands_{0};
   std::mutex send_mutex_;  // truth and topic samples come on their readers' threads
   std::unique_ptr<bus::ReaderOf<bus::topics::kTruth>> truth_;
   std::shared_ptr<void> topic_reader_;

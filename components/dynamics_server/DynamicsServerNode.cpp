@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "components/dynamics_server/DynamicsServerNode.hpp"
 
+#include <algorithm>
+
 #include <spdlog/spdlog.h>
 
 #include "bus/Convert.hpp"
@@ -89,6 +91,46 @@ DynamicsServerNode::DynamicsServerNode(bus::Bus& bus, bus::NodeOptions options,
   if (options_.schedule.count(std::string(bus::topics::kThrusterCmd.producer))) {
     thruster_cmd_ = &addInput(bus::topics::kThrusterCmd);
   }
+  if (!params.wheels_follow.empty()) {
+    wheel_unit_ = &addInput(bus::topics::kWheelTach);
+    wheel_unit_name_ = params.wheels_follow;
+    body_ = params.dynamics.body;
+  }
+}
+
+std::optional<Eigen::Vector4d> DynamicsServerNode::followUnit(const bus::StepContext& ctx) {
+  // A unit answers within a step or two on a paced rig; older, it has fallen silent and
+  // its bridge will lose its lease: meanwhile the commands drive the rotors, as they do
+  // once the emulator's samples are back.
+  constexpr std::uint64_t kFreshSteps = 3;
+  // A unit answering each command stamps its answer to the commands of step k with k + 1
+  // (the plant's own convention): here, as step k ends, that answer has come.
+  const auto tach = wheel_unit_->atIfAny(ctx.step + 1);
+  const bool fresh = tach && bus::text(tach->header().source()) == wheel_unit_name_ && tach->valid() &&
+                     tach->header().step() + kFreshSteps >= ctx.step + 1;
+  if (fresh != following_unit_) {
+    if (fresh) {
+      spdlog::info("{}: step {}: the wheels follow the unit behind {}", name(), ctx.step, wheel_unit_name_);
+    } else {
+      spdlog::warn("{}: step {}: no fresh speeds from {}: the commanded torques drive the wheels", name(), ctx.step,
+                   wheel_unit_name_);
+    }
+    following_unit_ = fresh;
+  }
+  if (!fresh) return std::nullopt;
+  // The unit is the rotors: the plant's catch up with its speeds over this step, the body
+  // taking the opposite momentum (a momentum exchange, so the drift of one step is
+  // corrected in the next, not accumulated).
+  const auto& body = body_;
+  const double dt_s = static_cast<double>(ctx.period_ns) * 1e-9;
+  Eigen::Vector4d torque = Eigen::Vector4d::Zero();
+  const Eigen::Vector4d unit = bus::vec4(tach->wheel_speed_rad_s());
+  for (int i = 0; i < wheel_count_; ++i) {
+    const double needed = body.wheel_inertia_kg_m2(i) * (unit(i) - model_.truth().wheel_speed_rad_s(i)) / dt_s;
+    torque(i) = std::clamp(needed, -body.wheel_max_torque_Nm(i), body.wheel_max_torque_Nm(i));
+  }
+  wheel_cmd_age_steps_ = static_cast<std::int64_t>(ctx.step + 1) - static_cast<std::int64_t>(tach->header().step());
+  return torque;
 }
 
 void DynamicsServerNode::publishStep(const bus::StepContext& ctx) {
@@ -105,6 +147,9 @@ void DynamicsServerNode::advance(const bus::StepContext& ctx) {
     const auto wheels = wheel_cmd_->at(ctx.step);
     cmd.wheel_torque_Nm = bus::vec4(wheels.torque_Nm());
     wheel_cmd_age_steps_ = static_cast<std::int64_t>(ctx.step - wheels.header().step());
+  }
+  if (wheel_unit_ != nullptr) {
+    if (const auto torque = followUnit(ctx)) cmd.wheel_torque_Nm = *torque;
   }
   if (dipole_cmd_ != nullptr && dipole_cmd_->hasAny(ctx.step)) {
     const auto dipole = dipole_cmd_->at(ctx.step);

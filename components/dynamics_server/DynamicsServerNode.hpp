@@ -24,6 +24,14 @@ class DynamicsServerNode final : public bus::TimeMaster {
   bus::InputOf<bus::topics::kDipoleCmd>* dipole_cmd_ = nullptr;      // if torquers are driven
   bus::InputOf<bus::topics::kFlapCmd>* flap_cmd_ = nullptr;          // if flaps are fitted and driven
   bus::InputOf<bus::topics::kThrusterCmd>* thruster_cmd_ = nullptr;  // if a thruster sequencer runs
+  /// A reaction wheel unit on the bench (DynamicsServerParams::wheels_follow): its speeds.
+  bus::InputOf<bus::topics::kWheelTach>* wheel_unit_ = nullptr;
+  std::string wheel_unit_name_;
+  sim::RigidBodyParams body_;  // the rotors' inertia and torque limits
+  bool following_unit_ = false;
+  /// The motor torques that bring the plant's rotors to the unit's speeds over the step,
+  /// when a fresh sample of the unit is held; none: the commands drive the rotors.
+  std::optional<Eigen::Vector4d> followUnit(const bus::StepContext& ctx);
   std::optional<std::uint64_t> thruster_cmd_fired_;  // step of the last command fired: each fires once
   static constexpr std::int64_t kNoCommand = -1;
   std::int64_t wheel_cmd_age_steps_ = kNoCommand;   // of the command held over the last step

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "bus/Topics.hpp"
 #include "sim/Frames.hpp"
 #include "sim/InitialDispersion.hpp"
 #include "sim/SunEphemeris.hpp"
@@ -133,6 +134,19 @@ DynamicsServerParams readParams(const bus::Scenario& scenario, const vehicle::Ve
   auto own = scenario.componentParams(args.name, problems);
   vehicle::refuseMovedKeys(own, {{"faults", "spacecraft.faults"}});
   own.read("substeps", p.substeps);
+  own.read("wheels_follow", params.wheels_follow);
+  const std::string wheel_unit = std::string(bus::topics::kWheelTach.producer) + "_bridge";
+  if (!params.wheels_follow.empty()) {
+    if (params.wheels_follow != wheel_unit) {
+      own.problem("wheels_follow", "'" + params.wheels_follow + "' is not a wheel unit's bridge (" + wheel_unit + ")");
+    } else if (!scenario.hasComponent(params.wheels_follow)) {
+      own.problem("wheels_follow", "the scenario has no component " + params.wheels_follow);
+    } else if (scenario.pacing != bus::Pacing::kPaced) {
+      own.problem("wheels_follow", "a unit on a serial line runs on the wall clock: needs mode: paced");
+    } else if (p.body.wheel_count < 1) {
+      own.problem("wheels_follow", "the spacecraft has no wheels (spacecraft.wheels)");
+    }
+  }
   std::string attitude = "free";
   own.read("attitude", attitude);
   if (attitude == "held_east_north_zenith") {

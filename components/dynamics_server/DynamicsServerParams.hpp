@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #pragma once
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "bus/NodeMain.hpp"
@@ -18,6 +19,10 @@ struct DynamicsServerParams {
   std::int64_t step_period_ns = 100'000'000;  ///< [ns] base period
   std::uint64_t final_step = 0;               ///< [-] last step index of the run
   double orbit_period_s = 0.0;                ///< [s] for reporting
+  /// A reaction wheel unit on the bench (paced runs): the bridge whose flatsat/wheel_tach
+  /// samples are its rotors' speeds, which the plant's rotors then follow; "" : the
+  /// commanded torques drive the plant's rotors.
+  std::string wheels_follow;
 };
 
 /// The truth plant's vehicle part: everything of `truth` the physics uses.
