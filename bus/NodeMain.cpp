@@ -100,7 +100,7 @@ BusOptions processBusOptions(const Scenario& scenario, const NodeArgs& args,
   // waiting on that lock after its 1 s interprocess timeout: before the 3 s lease names the
   // one that died (seen: a SIGKILLed external wheel_tach took the unloading controller,
   // then, with acknowledgements alone moved to UDP, the dynamics server with it). Such rigs
-  // talk UDP on loopback only, as an external process on another host would anyway.
+  // talk UDP alone (on the network profile's interfaces), as a process on another host would anyway.
   const bool any_external = std::any_of(scenario.components.begin(), scenario.components.end(),
                                         [](const ComponentEntry& c) { return !c.launched; });
   if (lockstep && any_external) {

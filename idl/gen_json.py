@@ -518,7 +518,7 @@ def generate(parser, idl_files, name, include_prefix):
              "/// text, an enumeration or an index past the end.\n"
              "template <class T> std::optional<double> leafValue(const T& sample, std::size_t leaf);\n"
              "/// Sets that leaf: a boolean to value != 0, an integer only to a whole value within\n"
-             "/// its type's range, a float to any value. false, and the sample unchanged, for\n"
+             "/// its type's range, a float to any value it can hold. false, and the sample unchanged, for\n"
              "/// any other leaf or value (a generic writer, e.g. a device bridge, checks this).\n"
              "template <class T> bool setLeaf(T& sample, std::size_t leaf, double value);\n\n")
     for s in structs:
@@ -600,6 +600,8 @@ def generate(parser, idl_files, name, include_prefix):
            "    }\n"
            "    target = static_cast<T>(value);\n"
            "  } else {\n"
+           "    // A finite double beyond a float's range would become infinite.\n"
+           "    if (std::isfinite(value) && std::abs(value) > static_cast<double>(std::numeric_limits<T>::max())) return false;\n"
            "    target = static_cast<T>(value);\n"
            "  }\n"
            "  return true;\n"

@@ -316,7 +316,13 @@ LaunchResult launch(const bus::Scenario& scenario, const LaunchOptions& options)
   for (const auto& program : scenario.programs) {
     Child child{program.name, -1, true, (logs / (program.name + ".log")).string(), false};
     child.program = true;
-    child.pid = spawnLogged(programArgv(program, options.run_dir, options.bin_dir), child.log);
+    try {
+      child.pid = spawnLogged(programArgv(program, options.run_dir, options.bin_dir), child.log);
+    } catch (const std::exception& e) {
+      // The rig started already: it is stopped below, not left running.
+      result.failure = "program '" + program.name + "' could not be started: " + e.what();
+      break;
+    }
     spdlog::info("started program {} (pid {})", program.name, child.pid);
     children.push_back(child);
   }
@@ -335,7 +341,7 @@ LaunchResult launch(const bus::Scenario& scenario, const LaunchOptions& options)
     return std::none_of(children.begin(), children.end(),
                         [](const Child& c) { return c.name == "dynamics_server" && c.running; });
   };
-  while (rigRunning()) {
+  while (result.failure.empty() && rigRunning()) {
     for (auto it = late.begin(); it != late.end();) {
       if (Clock::now() - start >= std::chrono::duration<double>((*it)->start_after_s)) {
         spdlog::info("starting bridge {} ({} s after launch)", (*it)->name, (*it)->start_after_s);
@@ -360,6 +366,10 @@ LaunchResult launch(const bus::Scenario& scenario, const LaunchOptions& options)
           exited_failure = "program '" + c.name + "' exited (" + describeExit(status) + ") before the run ended; last lines of " +
                            c.log + ":\n" + tail(c.log, 8);
         }
+        continue;
+      }
+      if (c.program) {
+        spdlog::info("program {} exited ({}) as the run ended", c.name, describeExit(status));
         continue;
       }
       if (!c.required) {

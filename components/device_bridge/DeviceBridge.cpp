@@ -95,7 +95,10 @@ BridgeSample DeviceBridge::step(const device_protocol::RawValues& frame) {
     const Eigen::Vector3d body = params_.q_body_sensor * Eigen::Vector3d(value[xyz[0]], value[xyz[1]], value[xyz[2]]);
     for (std::size_t k = 0; k < 3; ++k) value[xyz[k]] = body[static_cast<Eigen::Index>(k)];
   }
-  for (std::size_t i = 0; i < mapping_.leaves.size(); ++i) out.leaves.emplace_back(mapping_.leaves[i].leaf, value[i]);
+  for (std::size_t i = 0; i < mapping_.leaves.size(); ++i) {
+    out.finite = out.finite && std::isfinite(value[i]);
+    out.leaves.emplace_back(mapping_.leaves[i].leaf, value[i]);
+  }
   // A frame whose check passed is a measurement: the device would not send one otherwise.
   if (mapping_.valid_leaf) out.leaves.emplace_back(*mapping_.valid_leaf, 1.0);
   if (mapping_.saturated_leaf) out.leaves.emplace_back(*mapping_.saturated_leaf, out.saturated ? 1.0 : 0.0);

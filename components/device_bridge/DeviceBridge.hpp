@@ -54,6 +54,7 @@ struct BridgeSample {
   std::vector<std::pair<std::size_t, double>> leaves;  // (topic leaf, value in its unit; vectors in body axes)
   bool saturated = false;             // a field at or beyond its full scale
   std::uint64_t missed_samples = 0;   // sequence numbers skipped before this one
+  bool finite = true;                 // every value finite: an f64 count times its scale may overflow
 };
 
 /// A device's frames as its topic's samples (architecture, "Hardware swap-in"): counts to

@@ -194,9 +194,9 @@ void DeviceBridgeNode::run() {
       missed_ += sample.missed_samples;
       const auto step = stampFor();
       if (!step) continue;  // the rig has not started stepping: no time to stamp it with
-      if (!publish_(sample, *step) && unrepresentable_++ == 0) {
+      if ((!sample.finite || !publish_(sample, *step)) && unrepresentable_++ == 0) {
         spdlog::warn("{}: a frame holds a value its field of {} cannot take (a fraction for an integer, or out of "
-                     "its range): dropped, and counted as a bad value",
+                     "its range, or beyond a double once scaled): dropped, and counted as a bad value",
                      name(), params_.protocol.topic);
       }
     }

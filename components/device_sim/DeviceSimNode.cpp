@@ -19,6 +19,7 @@
 #include <spdlog/spdlog.h>
 
 #include "bus/Convert.hpp"
+#include "bus/Stamp.hpp"
 #include "components/Processes.hpp"
 #include "components/device_bridge/BridgeableTopics.hpp"
 #include "components/device_bridge/DeviceBridgeNode.hpp"
@@ -36,6 +37,30 @@ std::optional<std::size_t> leafIndex(const std::vector<msg::FieldInfo>& leaves, 
   const auto it = std::find_if(leaves.begin(), leaves.end(), [&](const msg::FieldInfo& f) { return f.name == name; });
   if (it == leaves.end()) return std::nullopt;
   return static_cast<std::size_t>(it - leaves.begin());
+}
+
+/// Each field the frame carries measured from the truth's field of the same name, with
+/// noise: {<topic field>: 1σ in its unit}.
+void readTruthSources(const std::vector<msg::FieldInfo>& leaves, bus::ParamReader& r, DeviceSimParams& p) {
+  const auto& truth_leaves = msg::leafFields<msg::TruthState>();
+  auto noise = r.section("noise");
+  std::set<std::string> noisy;
+  for (const auto& leaf : p.mapping.leaves) {
+    const std::string name(leaves[leaf.leaf].name);
+    if (name == "valid") continue;
+    const auto truth_leaf = leafIndex(truth_leaves, name);
+    if (!truth_leaf) {
+      r.problem("protocol", "'" + p.protocol.file + "' carries '" + name +
+                                "', which the truth does not: a device simulator cannot measure it");
+      continue;
+    }
+    const std::string field = name.substr(0, name.find('['));
+    double sigma = 0.0;
+    noise.read(field, sigma, std::string(leaves[leaf.leaf].unit));
+    if (!(sigma >= 0.0 && std::isfinite(sigma)) && noisy.insert(field).second) noise.problem(field, "must be >= 0");
+    p.sources.push_back({leaf.leaf, *truth_leaf, sigma});
+  }
+  noise.finish();
 }
 
 /// An actuator's stand-in: a reaction wheel unit (the only actuator a description may
@@ -121,7 +146,10 @@ std::shared_ptr<void> DeviceSimNode::subscribeTopic(bus::Bus& bus) {
   device_bridge::withBridgeableTopic(params_.protocol.topic, [&](const auto& def) {
     using Def = std::remove_cvref_t<decltype(def)>;
     using Sample = typename Def::Type;
-    reader = std::shared_ptr<bus::Reader<Def>>(new bus::Reader<Def>(bus, def, [this](const Sample& sample) {
+    reader = std::shared_ptr<bus::Reader<Def>>(new bus::Reader<Def>(bus, def, [this, producer = std::string(def.producer)](const Sample& sample) {
+      // The emulator's samples only: a bridge of the same topic in the rig publishes this
+      // line's own frames back, which framed again would go round for ever.
+      if (bus::text(sample.header().source()) != producer) return;
       std::vector<double> values(params_.topic_leaves, 0.0);
       for (std::size_t i = 0; i < values.size(); ++i) {
         values[i] = msg::leafValue(sample, i).value_or(0.0);
@@ -298,31 +326,17 @@ DeviceSimParams readParams(const bus::Scenario& scenario, const vehicle::Vehicle
   if (!(p.corrupt_fraction >= 0.0 && p.corrupt_fraction <= 1.0)) r.problem("corrupt_fraction", "must be in 0..1");
   const auto leaves = device_bridge::bridgeableLeaves(p.protocol.topic);
   if (leaves) {
-    const auto& truth_leaves = msg::leafFields<msg::TruthState>();
     p.topic_leaves = leaves->size();
     p.valid_leaf = leafIndex(*leaves, "valid");
     p.valid_in_frame = p.valid_leaf && std::any_of(p.mapping.leaves.begin(), p.mapping.leaves.end(),
                                                    [&](const auto& leaf) { return leaf.leaf == *p.valid_leaf; });
-    // noise: {<topic field>: 1σ in its unit}, for the fields the frame carries.
-    auto noise = r.section("noise");
-    std::set<std::string> noisy;
-    for (const auto& leaf : p.mapping.leaves) {
-      const std::string name((*leaves)[leaf.leaf].name);
-      if (name == "valid") continue;
-      const auto truth_leaf = leafIndex(truth_leaves, name);
-      if (p.source == "bus") continue;  // the emulator's sample has every field
-      if (!truth_leaf) {
-        r.problem("protocol", "'" + p.protocol.file + "' carries '" + name +
-                                  "', which the truth does not: a device simulator cannot measure it");
-        continue;
-      }
-      const std::string field = name.substr(0, name.find('['));
-      double sigma = 0.0;
-      noise.read(field, sigma, std::string((*leaves)[leaf.leaf].unit));
-      if (!(sigma >= 0.0 && std::isfinite(sigma)) && noisy.insert(field).second) noise.problem(field, "must be >= 0");
-      p.sources.push_back({leaf.leaf, *truth_leaf, sigma});
+    if (p.source == "bus") {
+      // The emulator's sample has every field, with its own noise.
+      if (r.has("noise")) r.problem("noise", "the emulator's samples carry their own noise (source: bus): the stand-in adds none");
+      r.leave({"noise"});
+    } else {
+      readTruthSources(*leaves, r, p);
     }
-    noise.finish();
   }
   if (p.protocol.topic == bus::topics::kSunSensor.name) {
     p.fov_half_angle_rad = kSunHead.fov_half_angle_rad;

@@ -148,6 +148,8 @@ struct FrameReader {
   }
 };
 
+constexpr double kPi = 3.14159265358979323846;  // M_PI is an X/Open extension, not C++17
+
 // ---- Serial lines ----
 
 void makeRaw(int fd) {
@@ -164,6 +166,7 @@ int openInput(const std::string& path) {
     const int fd = ::open(path.c_str(), O_RDONLY | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
     if (fd >= 0) {
       makeRaw(fd);
+      tcflush(fd, TCIFLUSH);  // what the line held before the board listened is stale
       return fd;
     }
     if (g_stop || std::chrono::steady_clock::now() > deadline) {
@@ -183,6 +186,10 @@ int openOutput(const std::string& link, int& slave) {
   }
   const std::string name = ::ptsname(master);
   slave = ::open(name.c_str(), O_RDWR | O_NOCTTY | O_CLOEXEC);  // held: the line stays up
+  if (slave < 0) {
+    std::fprintf(stderr, "flight computer: cannot open %s: %s\n", name.c_str(), std::strerror(errno));
+    std::exit(1);
+  }
   makeRaw(slave);
   ::unlink(link.c_str());
   if (::symlink(name.c_str(), link.c_str()) != 0) {
@@ -335,7 +342,7 @@ int main(int argc, char** argv) {
   readers.push_back({"gyro", {0xA5}, 20, [&](const std::uint8_t* f) {
     if (f[1] != 0x93 || be(f + 16, 4) != kCrc32Mpeg2.of(f + 1, 15)) return false;
     for (int i = 0; i < 3; ++i) {
-      s.w_rad_s[static_cast<std::size_t>(i)] = signedOf(be(f + 2 + 4 * i, 4), 4) * 1e-6 * M_PI / 180.0;
+      s.w_rad_s[static_cast<std::size_t>(i)] = signedOf(be(f + 2 + 4 * i, 4), 4) * 1e-6 * kPi / 180.0;
     }
     control();
     return true;
@@ -370,6 +377,11 @@ int main(int argc, char** argv) {
   while (!g_stop) {
     if (::poll(fds.data(), fds.size(), 100) < 0 && errno != EINTR) break;
     for (std::size_t i = 0; i < fds.size(); ++i) {
+      if (fds[i].revents & (POLLERR | POLLNVAL)) {
+        std::fprintf(stderr, "flight computer: line of the %s failed\n", readers[i].name.c_str());
+        g_stop = 1;
+        continue;
+      }
       if (!(fds[i].revents & (POLLIN | POLLHUP))) continue;
       const ssize_t n = ::read(fds[i].fd, bytes.data(), bytes.size());
       for (ssize_t k = 0; k < n; ++k) readers[i].push(bytes[static_cast<std::size_t>(k)]);

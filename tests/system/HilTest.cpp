@@ -156,8 +156,8 @@ TEST_CASE("a flight computer that speaks no DDS flies the rig over serial lines,
   CHECK(s["programs"]["flight_computer"]["topics"] ==
         nlohmann::json({{"flatsat/wheel_torque_cmd", "attitude_controller_bridge"},
                         {"flatsat/dipole_cmd", "unloading_controller_bridge"}}));
-  // The usual error of the default rig on its own controllers is ~0.14 deg at most.
-  CHECK(s["pointing_error_deg_max"].get<double>() < 0.5);
+  // The default rig on its own controllers, paced and on the Sun, holds it to ~0.02 deg.
+  CHECK(s["pointing_error_deg_max"].get<double>() < 0.05);
   // The rig's own attitude controller runs beneath the bridge: the bridge's commands won
   // from its first one, and no hand-over back happened.
   const auto& switches = s["ownership_switches"];
@@ -194,10 +194,12 @@ TEST_CASE("a flight computer that speaks no DDS flies the rig over serial lines,
   std::filesystem::remove_all(out);
 
   // No emulator stands behind a program: its death mid-run fails the run, naming it.
+  // Until then, started 2 deg off the Sun, the board turns the spacecraft towards it: a
+  // torque or a dipole of the wrong sign would turn it away.
   const std::string killed = test::freshDir("hil-fc-killed");
   auto run = std::async(std::launch::async, [&] {
     test::exportTestDomain();
-    return test::runCommand(test::runLine(scenario, killed, "--set duration_s=60"));
+    return test::runCommand(test::runLine(scenario, killed, "--set duration_s=60 --set 'initial.sun_offset_rad=2 deg'"));
   });
   std::this_thread::sleep_for(std::chrono::seconds(15));
   CHECK(test::runCommand("pkill -KILL -f 'example_flight_compute[r] .*" + killed + "'").exit_code == 0);
@@ -206,7 +208,34 @@ TEST_CASE("a flight computer that speaks no DDS flies the rig over serial lines,
   CHECK(result.exit_code != 0);
   CHECK(result.output.find("program 'flight_computer' exited (killed by signal 9) before the run ended") !=
         std::string::npos);
+  REQUIRE(test::runCommand(test::kFlatsat + " export " + killed + "/recording.sqlite --json -o " + killed +
+                           "/export -t truth")
+              .exit_code == 0);
+  std::map<std::uint64_t, double> off_sun_deg;  // the Sun's angle from the boresight, body +x
+  for (const auto& row : test::exportedRows(killed + "/export", "truth")) {
+    off_sun_deg[row["header"]["step"]] = std::acos(std::clamp(row["sun_body_unit"][0].get<double>(), -1.0, 1.0)) * 180.0 / M_PI;
+  }
+  REQUIRE(off_sun_deg.count(120));
+  INFO("off the Sun at 4, 8, 12 s: " << off_sun_deg[40] << ", " << off_sun_deg[80] << ", " << off_sun_deg[120] << " deg");
+  CHECK(off_sun_deg[0] == Approx(2.0).margin(1e-6));
+  CHECK(off_sun_deg[80] < off_sun_deg[40]);
+  CHECK(off_sun_deg[120] < off_sun_deg[80]);
+  CHECK(off_sun_deg[120] < 2.0 - 0.04);  // 1.94 deg after 12 s, the board's PD law on this inertia
   std::filesystem::remove_all(killed);
+
+  // A program that cannot start fails the run at once, and the rig started before it is stopped.
+  const std::string unstarted = test::freshDir("hil-fc-unstarted");
+  test::exportTestDomain();
+  const auto refused = test::runCommand(test::runLine(
+      scenario, unstarted,
+      "--set duration_s=20 --set 'programs=[{name: flight_computer, command: [no_such_board], "
+      "bridges: [attitude_controller_bridge, unloading_controller_bridge]}]'"));
+  INFO(refused.output);
+  CHECK(refused.exit_code != 0);
+  CHECK(refused.output.find("program 'flight_computer' could not be started: cannot start no_such_board") !=
+        std::string::npos);
+  CHECK(test::runCommand("pgrep -f -- 'flatsat-[a-z_]* .*--out " + unstarted + "'").exit_code == 1);
+  std::filesystem::remove_all(unstarted);
 }
 
 TEST_CASE("a reaction wheel unit on a serial line turns the plant's wheels, and when it dies the commands do",

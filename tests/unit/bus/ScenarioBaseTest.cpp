@@ -87,11 +87,16 @@ TEST_CASE("a scenario's programs: argv, their bridges, and what is refused with 
   } catch (const ScenarioError& e) {
     const std::string what = e.what();
     INFO(what);
-    CHECK(what.find("bad.yaml:9") != std::string::npos);  // each problem at its own entry's line
-    CHECK(what.find("'recorder' is a component's name") != std::string::npos);
-    CHECK(what.find("'two words' is not a plain word") != std::string::npos);
-    CHECK(what.find("command: must give the program to run") != std::string::npos);
-    CHECK(what.find("'recorder' is not a component of this scenario with role: bridge") != std::string::npos);
+    // Each problem at its own entry's line (lines 9, 10 and 11).
+    const auto at = [&](const std::string& line, const std::string& reason) {
+      const auto found = what.find(reason);
+      return found != std::string::npos && what.rfind(line, found) != std::string::npos &&
+             what.rfind(line, found) > what.rfind('\n', found);
+    };
+    CHECK(at("bad.yaml:9:", "'recorder' is a component's name"));
+    CHECK(at("bad.yaml:10:", "'two words' is not a plain word"));
+    CHECK(at("bad.yaml:10:", "command: must give the program to run"));
+    CHECK(at("bad.yaml:11:", "'recorder' is not a component of this scenario with role: bridge"));
   }
   const std::string lockstep = write("lockstep.yaml", "name: l\nduration_s: 10\ncomponents:\n  dynamics_server: {}\n"
                                                       "programs:\n  - {name: fc, command: [x]}\n");

@@ -156,6 +156,16 @@ TEST_CASE("the gyro's big-endian datagram: its bytes as a data sheet gives them,
   const std::vector<std::uint8_t> expected_head = {0xA5, 0x93, 0x00, 0x0F, 0x42, 0x40, 0xFF, 0xE1, 0x7B,
                                                    0x80, 0x00, 0x07, 0xA1, 0x20, 0x00, 0x02};
   CHECK(std::vector<std::uint8_t>(bytes.begin(), bytes.begin() + 16) == expected_head);  // counter 258 mod 256
+  // CRC-32/MPEG-2 over bytes 1..15, reckoned bit by bit as the catalogue defines it
+  // (poly 0x04C11DB7, init 0xFFFFFFFF, no reflection, no final xor), high byte first.
+  std::uint32_t crc = 0xFFFFFFFF;
+  for (std::size_t i = 1; i < 16; ++i) {
+    crc ^= static_cast<std::uint32_t>(bytes[i]) << 24;
+    for (int bit = 0; bit < 8; ++bit) crc = (crc & 0x80000000u) ? (crc << 1) ^ 0x04C11DB7u : crc << 1;
+  }
+  CHECK(std::vector<std::uint8_t>(bytes.begin() + 16, bytes.end()) ==
+        std::vector<std::uint8_t>{static_cast<std::uint8_t>(crc >> 24), static_cast<std::uint8_t>(crc >> 16),
+                                  static_cast<std::uint8_t>(crc >> 8), static_cast<std::uint8_t>(crc)});
   device_protocol::FrameParser parser(s.protocol.frame);
   std::optional<device_protocol::RawValues> parsed;
   for (auto b : bytes) parsed = parser.push(b);
@@ -220,4 +230,22 @@ TEST_CASE("a one-byte counter wraps without a gap, and the device end writes it 
   const auto bytes = device_protocol::encodeFrame(frame, raw);
   CHECK(device_protocol::decodeField(frame.fields[1], bytes.data()) == 2500.0);
   CHECK(device_protocol::decodeField(frame.fields[3], bytes.data()) == -2.0);  // −1.5 counts, to the nearest even
+}
+
+TEST_CASE("a value that a double cannot hold once scaled makes the sample unusable, never infinite on the bus",
+          "[device_bridge][unit]") {
+  device_protocol::FrameSpec frame;
+  frame.name = "huge";
+  frame.sync = {0xAA};
+  frame.fields = {{"c", 1, device_protocol::FieldType::kF64, true, std::nullopt, false, 1e10, "cell_output[0]"}};
+  frame.checksum = {device_protocol::ChecksumSpec::Kind::kSum8, 8, 0, 0, false, false, 0};
+  frame.checksum_at = frame.covers_to = 9;
+  frame.covers_from = 1;
+  REQUIRE(frame.validate().empty());
+  std::string why;
+  const auto mapping = FrameMapping::of(frame, names(kSunSensorLeaves), why);
+  REQUIRE(mapping);
+  DeviceBridge bridge(DeviceBridgeParams{}, *mapping);
+  CHECK(bridge.step({1e300}).finite == false);  // 1e310 is past DBL_MAX
+  CHECK(bridge.step({1e290}).finite);
 }
