@@ -63,6 +63,9 @@ ComponentKind kind(const std::string& name, Read read) {
 template <class Read>
 ComponentKind processOnly(const std::string& name, const std::string& executable, Read read, const std::string& reason,
                           std::vector<std::string> reads) {
+  // Every bus::Node takes bus-fault commands (Node::bus_fault_commands_): without the
+  // grant, a secured rig refuses its reader and the process fails at its start.
+  reads.emplace_back(bus::topics::kFaultCmd.name);
   return {name, executable,
           [read](const bus::Scenario& s, const vehicle::Vehicle& v, const bus::NodeArgs& a, bus::ConfigProblems& p) {
             readWith(read, s, v, a, p);

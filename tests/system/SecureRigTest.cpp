@@ -83,3 +83,26 @@ TEST_CASE("a secured rig takes commands only from a tool with the operator's cer
   fs::remove_all(run);
   fs::remove(run + ".log");
 }
+
+TEST_CASE("a secured rig runs its hardware bridges: a reaction wheel unit behind its bridge turns the wheels",
+          "[system][security][hil]") {
+  // The bridge and the unit's stand-in are process-only kinds: their grants come from the
+  // registry's list of what they read (the grants, the wheel commands, the truth, bus faults).
+  const test::Certificates certs;
+  const std::string out = test::freshDir("secure-hil");
+  const auto s = test::runScenario(std::string(FLATSAT_SCENARIO_DIR) + "/hil_reaction_wheel.yaml", out,
+                                   "--set duration_s=15 --secure " + certs.dir.string(), true)
+                     .summary;
+  INFO(s.dump(2));
+  CHECK(s["completed"] == true);
+  CHECK(s["topic_producers"]["flatsat/wheel_tach"] == nlohmann::json::array({"wheel_tach", "wheel_tach_bridge"}));
+  CHECK(s["ownership_switches"].size() == 1);  // to the bridge, and never back
+  for (const std::string process : {"wheel_tach_bridge", "wheel_tach_device"}) {
+    const std::string log = test::readFile(out + "/logs/" + process + ".log");
+    INFO(log);
+    CHECK(log.find("[error]") == std::string::npos);
+  }
+  CHECK(test::readFile(out + "/logs/dynamics_server.log").find("the wheels follow the unit behind wheel_tach_bridge") !=
+        std::string::npos);
+  fs::remove_all(out);
+}
