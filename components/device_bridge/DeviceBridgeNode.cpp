@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "components/device_bridge/DeviceBridgeNode.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -291,6 +292,8 @@ DeviceBridgeNodeParams readParams(const bus::Scenario& scenario, const vehicle::
                p.bridge.q_body_sensor);
   p.device = defaultDevicePath(args, p.protocol.name.empty() ? producerOf(args.name) : p.protocol.name);
   r.read("device", p.device);
+  // Three periods of a slow device unsent before it is late; never sooner than 0.5 s.
+  if (p.protocol.rate_hz) p.late_after_s = std::max(p.late_after_s, 3.0 / *p.protocol.rate_hz);
   r.read("late_after_s", p.late_after_s, "s");
   if (!(p.late_after_s > 0.0 && std::isfinite(p.late_after_s))) r.problem("late_after_s", "must be > 0");
   r.problems(p.bridge.validate());

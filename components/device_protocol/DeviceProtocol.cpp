@@ -246,6 +246,14 @@ DeviceProtocol readDeviceProtocol(const std::string& path, const FieldUnitLookup
   } else if (reply != "periodic") {
     r.problem("reply", "'" + reply + "' is neither periodic nor per_command");
   }
+  if (r.has("rate_hz")) {
+    protocol.rate_hz = 0.0;
+    r.read("rate_hz", *protocol.rate_hz, "Hz");
+    if (!(*protocol.rate_hz > 0.0 && *protocol.rate_hz <= 10000.0)) r.problem("rate_hz", "must be in (0, 10 kHz]");
+    if (protocol.reply == ReplyMode::kPerCommand) {
+      r.problem("rate_hz", "a device that answers each command (reply: per_command) sends at its commands' rate");
+    }
+  }
   r.finish();
   return protocol;
 }

@@ -42,6 +42,9 @@ struct DeviceProtocol {
   std::string command_topic;       // an actuator's command topic, e.g. "flatsat/wheel_torque_cmd"; "" : a sensor
   std::optional<FrameSpec> command;  // what the device takes (with command_topic)
   ReplyMode reply = ReplyMode::kPeriodic;
+  /// [Hz] a periodic device's output rate, (0, 10000]; none: as fast as it is driven.
+  /// The stand-in sends at it, the bridge is late after three of its periods unsent.
+  std::optional<double> rate_hz;
 };
 
 /// The unit of a topic's field ("b_body_T[0]" → "T"), as bus::ParamReader spells units;

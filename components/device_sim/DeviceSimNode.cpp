@@ -320,6 +320,11 @@ DeviceSimParams readParams(const bus::Scenario& scenario, const vehicle::Vehicle
   r.read("port", p.port);
   r.read("source", p.source);
   if (p.source != "truth" && p.source != "bus") r.problem("source", "'" + p.source + "' is neither truth nor bus");
+  // A device with a rate of its own sends one frame in as many truth samples as fit its
+  // period (on the bus it frames the emulator's samples as they come, at the emulator's rate).
+  if (p.protocol.rate_hz && p.source == "truth") {
+    p.truth_divider = static_cast<std::uint32_t>(std::max(1.0, std::round(1.0 / (scenario.step_s * *p.protocol.rate_hz))));
+  }
   r.read("truth_divider", p.truth_divider);
   r.read("corrupt_fraction", p.corrupt_fraction, "-");
   if (p.truth_divider < 1) r.problem("truth_divider", "must be >= 1");

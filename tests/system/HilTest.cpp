@@ -17,10 +17,25 @@
 #include <thread>
 #include <vector>
 
+#include "tests/support/Background.hpp"
 #include "tests/support/Rig.hpp"
 #include "tests/support/SensorContract.hpp"
 
 using namespace flatsat;
+
+namespace {
+
+/// Waits until the run into `out` steps (its time master found every component ready),
+/// so that a loaded machine's slow start-up is not counted as run time.
+void waitUntilStepping(const std::string& out) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(180);
+  while (test::readFile(out + "/logs/dynamics_server.log").find("every component ready") == std::string::npos) {
+    REQUIRE(std::chrono::steady_clock::now() < deadline);
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+}
+
+}  // namespace
 
 TEST_CASE("a magnetometer bridge takes over mid-run and the emulator takes back when it dies",
           "[device_bridge][system][paced][hil]") {
@@ -201,6 +216,7 @@ TEST_CASE("a flight computer that speaks no DDS flies the rig over serial lines,
     test::exportTestDomain();
     return test::runCommand(test::runLine(scenario, killed, "--set duration_s=60 --set 'initial.sun_offset_rad=2 deg'"));
   });
+  waitUntilStepping(killed);
   std::this_thread::sleep_for(std::chrono::seconds(15));
   CHECK(test::runCommand("pkill -KILL -f 'example_flight_compute[r] .*" + killed + "'").exit_code == 0);
   const auto result = run.get();
@@ -247,6 +263,7 @@ TEST_CASE("a reaction wheel unit on a serial line turns the plant's wheels, and 
     return test::runScenario(std::string(FLATSAT_SCENARIO_DIR) + "/hil_reaction_wheel.yaml", out,
                              "--set duration_s=40", true);
   });
+  waitUntilStepping(out);
   std::this_thread::sleep_for(std::chrono::seconds(25));
   REQUIRE(test::runCommand("pkill -KILL -f 'flatsat-device_si[m] .*--name wheel_tach_device --out " + out + "'")
               .exit_code == 0);

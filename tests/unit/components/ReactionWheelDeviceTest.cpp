@@ -168,6 +168,12 @@ TEST_CASE("an actuator's description without its other half is refused, with the
   CHECK_THAT(problemsOf("sensor.yaml", "reply: per_command\n" + frame),
              Catch::Contains("reply: per_command answers command frames"));
   CHECK_THAT(problemsOf("reply.yaml", "reply: sometimes\n" + frame), Catch::Contains("'sometimes' is neither periodic nor per_command"));
+  CHECK(problemsOf("rate.yaml", "rate_hz: 50 Hz\n" + frame).empty());
+  CHECK_THAT(problemsOf("answers.yaml", "command_topic: flatsat/wheel_torque_cmd\nreply: per_command\nrate_hz: 10 Hz\n" +
+                                            frame + command),
+             Catch::Contains("rate_hz: a device that answers each command"));
+  CHECK_THAT(problemsOf("fast.yaml", "rate_hz: 20000\n" + frame), Catch::Contains("rate_hz: must be in (0, 10 kHz]"));
+  CHECK_THAT(problemsOf("slow.yaml", "rate_hz: 2 s\n" + frame), Catch::Contains("rate_hz"));  // a period is no rate
   CHECK_THAT(problemsOf("field.yaml", "command_topic: flatsat/wheel_torque_cmd\n" + frame +
                                           std::string(command).replace(command.find("torque_Nm"), 9, "speed_Nm")),
              Catch::Contains("command.fields[0].to: 'speed_Nm[0]' is not a field of flatsat/wheel_torque_cmd"));
