@@ -373,6 +373,24 @@ std::uint64_t Recording::count(const std::string& topic) const {
   return sqlite3_step(s.stmt) == SQLITE_ROW ? static_cast<std::uint64_t>(sqlite3_column_int64(s.stmt, 0)) : 0;
 }
 
+std::map<std::string, Recording::TopicExtent> Recording::extents() const {
+  const auto lock = settle();
+  Statement s(db_,
+              "SELECT topic, COUNT(*), MIN(step), MAX(step), MIN(sim_time_ns), MAX(sim_time_ns) FROM samples "
+              "GROUP BY topic",
+              path_);
+  std::map<std::string, TopicExtent> extents;
+  while (sqlite3_step(s.stmt) == SQLITE_ROW) {
+    auto& e = extents[reinterpret_cast<const char*>(sqlite3_column_text(s.stmt, 0))];
+    e.samples = static_cast<std::uint64_t>(sqlite3_column_int64(s.stmt, 1));
+    e.first_step = static_cast<std::uint64_t>(sqlite3_column_int64(s.stmt, 2));
+    e.last_step = static_cast<std::uint64_t>(sqlite3_column_int64(s.stmt, 3));
+    e.first_sim_time_ns = sqlite3_column_int64(s.stmt, 4);
+    e.last_sim_time_ns = sqlite3_column_int64(s.stmt, 5);
+  }
+  return extents;
+}
+
 std::optional<std::uint64_t> Recording::lastStep(const std::string& topic) const {
   const auto lock = settle();
   Statement s(db_, "SELECT MAX(step) FROM samples WHERE topic = ?", path_);

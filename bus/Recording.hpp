@@ -84,6 +84,14 @@ class Recording {
   void eraseAfter(std::uint64_t step);
   /// Every recorded topic with the sources that published it.
   std::map<std::string, std::set<std::string>> topicSources() const;
+  /// What one topic holds: its sample count and the span of its stamps.
+  struct TopicExtent {
+    std::uint64_t samples = 0;
+    std::uint64_t first_step = 0, last_step = 0;
+    std::int64_t first_sim_time_ns = 0, last_sim_time_ns = 0;
+  };
+  /// Every recorded topic's extent, in one pass over the samples.
+  std::map<std::string, TopicExtent> extents() const;
   /// SHA-256 (hex) over every sample of every topic except `excluded`, in
   /// (topic, source, step) order: independent of arrival order and of
   /// wall-clock topics.

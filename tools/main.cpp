@@ -30,6 +30,7 @@
 #include "rig/Fleet.hpp"
 #include "tools/HealthCommand.hpp"
 #include "tools/HzCommand.hpp"
+#include "tools/InfoCommand.hpp"
 #include "rig/Launcher.hpp"
 #include "tools/McCommand.hpp"
 #include "tools/MiddlewareBench.hpp"
@@ -654,7 +655,8 @@ int main(int argc, char** argv) {
   std::vector<CLI::App*> tool_cmds = {
       tools::addTopicsCommand(app, tool_exit), tools::addEchoCommand(app, tool_exit),
       tools::addHzCommand(app, tool_exit),     tools::addHealthCommand(app, tool_exit),
-      tools::addExportCommand(app, tool_exit), tools::addPlotCommand(app, tool_exit),
+      tools::addExportCommand(app, tool_exit), tools::addInfoCommand(app, tool_exit),
+      tools::addPlotCommand(app, tool_exit),
       tools::addRecordCommand(app, tool_exit), tools::addReplayCommand(app, tool_exit),
       tools::addCmdCommand(app, tool_exit),    tools::addWebCommand(app, tool_exit)};
   for (auto* peer : tools::addBenchPeerCommands(app, tool_exit)) tool_cmds.push_back(peer);

@@ -10,6 +10,8 @@
 
 #include <chrono>
 #include <filesystem>
+#include <climits>
+#include <map>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -128,7 +130,7 @@ test::CommandResult tool(const std::string& args) {
 
 TEST_CASE("every tool subcommand explains itself with --help", "[system][tools]") {
   for (const std::string command :
-       {"topics", "echo", "hz", "health", "export", "plot", "record", "replay", "cmd"}) {
+       {"topics", "echo", "hz", "health", "export", "info", "plot", "record", "replay", "cmd"}) {
     CAPTURE(command);
     const auto help = test::runCommand(kFlatsat + " " + command + " --help");
     INFO(help.output);
@@ -294,6 +296,47 @@ TEST_CASE("export writes one CSV per recorded topic: a row per step, units in th
   CHECK_FALSE(fs::exists(fs::path(run) / "json" / "gyro.jsonl"));
 
   CHECK(test::runCommand(kFlatsat + " export " + recording).exit_code == 2);  // neither --csv nor --json
+
+  // info tells what the file holds, as SQLite itself reads it (Debian's sqlite3) and as
+  // the run's summary gave it.
+  const auto described = tool("info " + recording + " --json");
+  INFO(described.output);
+  REQUIRE(described.exit_code == 0);
+  const auto info = nlohmann::json::parse(described.output);
+  CHECK(info["recording_sha256"] == test::readSummary(run)["recording_sha256"]);
+  CHECK(info["scenario"] == "default");
+  CHECK(info["mode"] == "lockstep");
+  std::uint64_t on_disk = fs::file_size(recording);
+  if (fs::exists(recording + "-wal")) on_disk += fs::file_size(recording + "-wal");
+  CHECK(info["size_bytes"] == on_disk);
+  const auto counted = test::runCommand("sqlite3 -readonly " + recording +
+                                        " 'SELECT topic, COUNT(*), MIN(sim_time_ns), MAX(sim_time_ns) FROM samples GROUP BY topic'");
+  REQUIRE(counted.exit_code == 0);
+  std::map<std::string, std::uint64_t> by_sqlite;
+  long long first_ns = LLONG_MAX, last_ns = LLONG_MIN;
+  for (const auto& row : lines(counted.output)) {
+    const auto a = row.find('|'), b = row.find('|', a + 1), c = row.find('|', b + 1);
+    by_sqlite[row.substr(0, a)] = std::stoull(row.substr(a + 1, b - a - 1));
+    first_ns = std::min(first_ns, std::stoll(row.substr(b + 1, c - b - 1)));
+    last_ns = std::max(last_ns, std::stoll(row.substr(c + 1)));
+  }
+  REQUIRE(info["topics"].size() == by_sqlite.size());
+  const double span_s = static_cast<double>(last_ns - first_ns) * 1e-9;
+  CHECK(span_s == Approx(60.0));  // the run's 60 s
+  CHECK(info["sim_duration_s"].get<double>() == Approx(span_s).margin(1e-9));
+  CHECK(info["first_step"] == 0);
+  CHECK(info["last_step"] == 600);
+  for (const auto& t : info["topics"]) {
+    CAPTURE(t.dump());
+    CHECK(t["samples"] == by_sqlite.at(t["topic"]));
+    CHECK(t["rate_hz"].get<double>() == Approx(static_cast<double>(by_sqlite.at(t["topic"])) / span_s));
+  }
+  CHECK(info["topics"][11]["topic"] == "flatsat/truth");
+  CHECK(info["topics"][11]["type"] == "flatsat::msg::TruthState");
+  CHECK(info["wall_duration_s"].get<double>() > 0.0);
+  const auto table = tool("info " + recording);
+  CHECK(table.output.find("Digest:        " + info["recording_sha256"].get<std::string>()) != std::string::npos);
+  CHECK(tool("info " + run + "/nothing.sqlite").exit_code == 1);
   fs::remove_all(run);
 }
 
