@@ -86,6 +86,15 @@ void checkWheelUnit(const bus::Scenario& scenario, const vehicle::Vehicle& vehic
   if (!reported_by_each.list().empty()) return;
   const bool actuator = unit.command_mapping.has_value();
   const auto where = scenario.file + ": components.";
+  const auto schedule = scenario.schedule();
+  const auto tach = schedule.find(std::string(bus::topics::kWheelTach.producer));
+  if (actuator && tach != schedule.end() && tach->second != 1) {
+    // The unit answers every command; on a slower tachometer topic the answers stamped
+    // between its due steps are no one's, and the plant would follow every other one.
+    problems.add(where + std::string(bus::topics::kWheelTach.producer) +
+                 ".rate_divider: a reaction wheel unit answers every step: give it 1 (it is " +
+                 std::to_string(tach->second) + ")");
+  }
   if (actuator && server.wheels_follow != bridge) {
     problems.add(where + "dynamics_server: " + bridge + " commands a reaction wheel unit: set wheels_follow: " + bridge +
                  " so that the plant's wheels turn as the unit's do");

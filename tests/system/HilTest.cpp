@@ -321,3 +321,28 @@ TEST_CASE("a reaction wheel unit on a serial line turns the plant's wheels, and 
   CHECK(server.find("no fresh speeds from wheel_tach_bridge: the commanded torques drive the wheels") != std::string::npos);
   std::filesystem::remove_all(out);
 }
+
+TEST_CASE("a reaction wheel unit's rig is refused at validation when its parts do not fit, saying which and why",
+          "[device_bridge][system][hil]") {
+  const std::string dir = test::freshDir("hil-rw-invalid");
+  std::filesystem::create_directories(dir);
+  const auto problemsOf = [&](const std::string& name, const std::string& base, const std::string& components) {
+    std::ofstream(dir + "/" + name) << "base: " << FLATSAT_SCENARIO_DIR << "/" << base << "\nname: x\ncomponents:\n"
+                                    << components;
+    const auto result = test::runCommand(test::kFlatsat + " validate " + dir + "/" + name + " 2>&1");
+    CHECK(result.exit_code != 0);
+    return result.output;
+  };
+  CHECK_THAT(problemsOf("divider.yaml", "hil_reaction_wheel.yaml", "  wheel_tach: {rate_divider: 2}\n"),
+             Catch::Contains("components.wheel_tach.rate_divider: a reaction wheel unit answers every step"));
+  CHECK_THAT(problemsOf("unfollowed.yaml", "hil_reaction_wheel.yaml", "  dynamics_server: {wheels_follow: \"\"}\n"),
+             Catch::Contains("wheel_tach_bridge commands a reaction wheel unit: set wheels_follow: wheel_tach_bridge"));
+  CHECK_THAT(problemsOf("tachometer.yaml", "hil_sensors.yaml",
+                        "  dynamics_server: {wheels_follow: wheel_tach_bridge}\n  wheel_tach_bridge: {role: bridge}\n"),
+             Catch::Contains("has no command frame): the plant would follow speeds nobody drives"));
+  CHECK_THAT(problemsOf("lockstep.yaml", "hil_reaction_wheel.yaml", "  recorder: {}\nmode: lockstep\n"),
+             Catch::Contains("wheels_follow: a unit on a serial line runs on the wall clock: needs mode: paced"));
+  CHECK_THAT(problemsOf("gyro.yaml", "hil_sensors.yaml", "  gyro_bridge: {role: bridge, protocol: reaction_wheel.yaml}\n"),
+             Catch::Contains("'reaction_wheel.yaml' describes frames for flatsat/wheel_tach, which wheel_tach publishes"));
+  std::filesystem::remove_all(dir);
+}
