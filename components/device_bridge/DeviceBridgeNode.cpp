@@ -52,6 +52,7 @@ DeviceBridgeNode::DeviceBridgeNode(bus::Bus& bus, bus::NodeOptions options, cons
       parser_(params.protocol.frame),
       publish_(publisherFor(params.protocol.topic)),
       grants_(bus, bus::topics::kStepGrant, [this](const msg::StepGrant& g) {
+        if (g.stop()) run_ended_ = true;
         std::lock_guard lock(grant_mutex_);
         grant_ = Grant{{g.header().step(), g.header().sim_time_ns(), g.step_period_ns()},
                        std::chrono::steady_clock::now()};
@@ -184,6 +185,11 @@ void DeviceBridgeNode::run() {
   const auto silent_s = [&] { return std::chrono::duration<double>(Clock::now() - last_frame).count(); };
   while (!interrupted()) {
     const long n = port.read(buffer, std::chrono::milliseconds(100));
+    if (n < 0 && run_ended_) {
+      // The rig stops its device stand-ins with the rest: a line closing now is no fault.
+      spdlog::info("{}: {} closed as the run ended", name(), params_.device);
+      break;
+    }
     if (n < 0) throw bus::NodeFailure(name() + ": line lost on " + params_.device);
     for (long i = 0; i < n; ++i) {
       const auto frame = parser_.push(buffer[static_cast<std::size_t>(i)]);

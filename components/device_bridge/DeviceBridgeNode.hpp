@@ -71,6 +71,7 @@ class DeviceBridgeNode final : public bus::Node {
   };
   mutable std::mutex grant_mutex_;
   std::optional<Grant> grant_;
+  std::atomic<bool> run_ended_{false};  // the time master's last grant said stop
   bus::ReaderOf<bus::topics::kStepGrant> grants_;
   mutable std::mutex port_mutex_;
   std::optional<std::uint64_t> last_command_step_;  // guarded by port_mutex_

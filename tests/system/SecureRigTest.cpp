@@ -56,13 +56,18 @@ TEST_CASE("a secured rig records exactly what the open rig records, whatever a s
   fs::remove(out + ".log");
 }
 
-TEST_CASE("a secured rig takes commands only from a tool with the operator's certificate",
-          "[system][security][cmd]") {
+TEST_CASE("a secured rig takes commands only from a tool with the operator's certificate, and runs its "
+          "hardware bridges",
+          "[system][security][cmd][hil]") {
+  // hil_reaction_wheel.yaml: the default rig, paced, with a reaction wheel unit behind its
+  // bridge. The bridge and the unit's stand-in are process-only kinds: their grants come
+  // from the registry's list of what they read (the grants, the wheel commands, the
+  // truth, bus faults).
   const test::Certificates certs;
   test::exportTestDomain();
   const std::string run = test::freshDir("secure-cmd");
   test::Background rig(test::kFlatsat + " run " + std::string(FLATSAT_SCENARIO_DIR) +
-                           "/default.yaml -q --no-plots --out " + run +
+                           "/hil_reaction_wheel.yaml -q --no-plots --out " + run +
                            // Long enough for the stranger's 4 s and the operator's two 4 s tries
                            // after the start: under a loaded suite the run had ended before an ack.
                            " --set mode=paced --set duration_orbits=null --set duration_s=20" +
@@ -80,29 +85,17 @@ TEST_CASE("a secured rig takes commands only from a tool with the operator's cer
   CHECK(operator_cmd.output.find("accepted by gyro") != std::string::npos);
   INFO(test::readFile(run + ".log"));
   REQUIRE(rig.wait(60) == 0);
+  const auto s = test::readSummary(run);
+  CHECK(s["topic_producers"]["flatsat/wheel_tach"] == nlohmann::json::array({"wheel_tach", "wheel_tach_bridge"}));
+  CHECK(s["ownership_switches"].size() == 1);  // to the bridge, and never back
+  for (const std::string process : {"wheel_tach_bridge", "wheel_tach_device"}) {
+    const std::string log = test::readFile(run + "/logs/" + process + ".log");
+    INFO(log);
+    CHECK(log.find("[error]") == std::string::npos);
+  }
+  CHECK(test::readFile(run + "/logs/dynamics_server.log").find("the wheels follow the unit behind wheel_tach_bridge") !=
+        std::string::npos);
   fs::remove_all(run);
   fs::remove(run + ".log");
 }
 
-TEST_CASE("a secured rig runs its hardware bridges: a reaction wheel unit behind its bridge turns the wheels",
-          "[system][security][hil]") {
-  // The bridge and the unit's stand-in are process-only kinds: their grants come from the
-  // registry's list of what they read (the grants, the wheel commands, the truth, bus faults).
-  const test::Certificates certs;
-  const std::string out = test::freshDir("secure-hil");
-  const auto s = test::runScenario(std::string(FLATSAT_SCENARIO_DIR) + "/hil_reaction_wheel.yaml", out,
-                                   "--set duration_s=15 --secure " + certs.dir.string(), true)
-                     .summary;
-  INFO(s.dump(2));
-  CHECK(s["completed"] == true);
-  CHECK(s["topic_producers"]["flatsat/wheel_tach"] == nlohmann::json::array({"wheel_tach", "wheel_tach_bridge"}));
-  CHECK(s["ownership_switches"].size() == 1);  // to the bridge, and never back
-  for (const std::string process : {"wheel_tach_bridge", "wheel_tach_device"}) {
-    const std::string log = test::readFile(out + "/logs/" + process + ".log");
-    INFO(log);
-    CHECK(log.find("[error]") == std::string::npos);
-  }
-  CHECK(test::readFile(out + "/logs/dynamics_server.log").find("the wheels follow the unit behind wheel_tach_bridge") !=
-        std::string::npos);
-  fs::remove_all(out);
-}
