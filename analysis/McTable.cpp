@@ -51,7 +51,7 @@ std::string mcCsv(const std::vector<McRun>& runs, const std::vector<std::string>
   csv << '\n';
   for (const auto& run : runs) {
     const bool ok = run.summary.is_object();
-    csv << run.index << ',' << run.seed << ',' << run.exit_code << ','
+    csv << run.index << ',' << run.seed << ',' << (run.exit_code >= 0 ? std::to_string(run.exit_code) : "") << ','
         << (ok ? run.summary.value("recording_sha256", "") : "");
     for (const auto& key : keys) {
       csv << ',';
@@ -71,7 +71,11 @@ nlohmann::ordered_json mcSummary(const std::string& scenario, const std::vector<
   nlohmann::ordered_json failed = nlohmann::ordered_json::array();
   for (const auto& run : runs) {
     if (!run.summary.is_object()) {
-      failed.push_back({{"run", run.index}, {"seed", run.seed}, {"exit_code", run.exit_code}, {"log", run.log}});
+      failed.push_back({{"run", run.index},
+                        {"seed", run.seed},
+                        {"exit_code", run.exit_code >= 0 ? nlohmann::ordered_json(run.exit_code) : nullptr},
+                        {"reason", run.failure},
+                        {"log", run.log}});
     }
   }
   out["succeeded"] = runs.size() - failed.size();

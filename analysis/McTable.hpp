@@ -13,7 +13,8 @@ namespace flatsat::analysis {
 struct McRun {
   int index = 0;
   std::uint64_t seed = 0;
-  int exit_code = -1;        ///< the run's exit status (128 + signal when killed)
+  int exit_code = -1;        ///< the run's exit status (128 + signal when killed); -1: it never ended
+  std::string failure;       ///< why it has no result, in words; empty when it succeeded
   std::string log;           ///< its stdout and stderr (kept when it failed)
   nlohmann::ordered_json summary;  ///< its summary.json; null when it failed
 };
@@ -33,11 +34,12 @@ McStats mcStats(std::vector<double> values);
 std::vector<std::string> mcNumericKeys(const std::vector<McRun>& runs);
 
 /// mc.csv: a header, then one row per run in index order: run, seed,
-/// exit_code, recording_sha256, then every numeric key (empty when the run
-/// failed or did not report the key). Numbers keep their full precision.
+/// exit_code (empty when the run never ended), recording_sha256, then every
+/// numeric key (empty when the run failed or did not report the key). Numbers keep their full precision.
 std::string mcCsv(const std::vector<McRun>& runs, const std::vector<std::string>& keys);
 
-/// mc_summary.json: the runs' counts, the failed runs (seed, exit code, log)
+/// mc_summary.json: the runs' counts, the failed runs (seed, exit code or
+/// null, the reason, log)
 /// and per numeric key the McStats over the successful runs.
 nlohmann::ordered_json mcSummary(const std::string& scenario, const std::vector<McRun>& runs,
                                  const std::vector<std::string>& keys);

@@ -99,9 +99,6 @@ dds::DomainParticipantQos loopbackParticipantQos(std::uint32_t domain, bool shar
   return qos;
 }
 
-namespace {
-
-/// The IPv4 addresses of this host's (this network namespace's) interfaces.
 std::vector<std::string> ownAddresses() {
   std::vector<std::string> addresses;
   ifaddrs* list = nullptr;
@@ -116,6 +113,8 @@ std::vector<std::string> ownAddresses() {
   ::freeifaddrs(list);
   return addresses;
 }
+
+namespace {
 
 /// The rig across hosts: this host's address among the peers is the only
 /// interface, for data and discovery alike. The shared-memory transport is

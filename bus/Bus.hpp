@@ -83,6 +83,8 @@ std::uint32_t domainFromEnvironment(std::uint32_t scenario_domain);
 BusNetwork networkFromEnvironment();
 /// Puts a process's network (profile, peers, servers, security) into `options`.
 void useNetwork(BusOptions& options, const BusNetwork& network);
+/// The IPv4 addresses of this host's (this network namespace's) interfaces.
+std::vector<std::string> ownAddresses();
 
 /// One DDS participant with one publisher and two subscribers (readers that
 /// watch their writers' liveliness, and the others: createReader); topics

@@ -24,9 +24,11 @@ packages=(
   iproute2 tcpdump procps
   python3 gnuplot-nox
 )
-# Only for `test`: the compose rig's engine, base image and network filter, and the
-# browser the live web view is tested in.
-test_packages=(docker.io docker-compose debootstrap nftables chromium)
+# Only for `test`: the compose rig's engine, base image and network filter, the
+# browser the live web view is tested in, and a single-node Slurm cluster for
+# `flatsat mc --slurm` (deploy/slurm/local-cluster.sh; its daemons start only
+# in that test).
+test_packages=(docker.io docker-compose debootstrap nftables chromium munge slurmctld slurmd slurm-client)
 # Only for `fuzz` and `test`: clang with libFuzzer and the sanitizer runtimes.
 fuzz_packages=(clang libclang-rt-14-dev)
 fuzz_build="${FLATSAT_FUZZ_BUILD_DIR:-$here/build-fuzz}"

@@ -49,6 +49,7 @@
 #include "analysis/Summary.hpp"
 #include "tools/TopicsCommand.hpp"
 #include "tools/WebCommand.hpp"
+#include "flatsat_version.hpp"
 
 namespace fs = std::filesystem;
 using namespace flatsat;
@@ -589,6 +590,7 @@ int main(int argc, char** argv) {
 
   CLI::App app{"flatsat: a flight-network attitude and orbit control rig"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", kFlatsatVersion);
 
   RunOptions run_options;
   auto* run_cmd = app.add_subcommand("run", "run a scenario: every component its own process");
@@ -676,7 +678,7 @@ int main(int argc, char** argv) {
   if (field_cmd->parsed()) return field_exit;
   if (study_cmd->parsed()) return study_exit;
   if (soak_cmd->parsed()) return soak_exit;
-  if (mc_cmd->parsed()) return mc_exit;
+  if (mc_cmd->parsed() || app.got_subcommand("mc-task")) return mc_exit;
   for (auto* tool : tool_cmds) {
     if (tool->parsed()) return tool_exit;
   }

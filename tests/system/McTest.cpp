@@ -154,7 +154,8 @@ TEST_CASE("flatsat mc refuses bad input with exit status 2, naming what is wrong
   }
 }
 
-TEST_CASE("a run that dies is reported with its log and exit status, and the others still run", "[system][mc]") {
+TEST_CASE("a run that dies is reported with its log and exit status, the others still run, and --resume "
+          "runs it again", "[system][mc]") {
   const std::string out = test::freshDir("mc-fail");
   const std::string log = out + ".log";
   const pid_t mc = test::startCommand(test::kFlatsat + " mc " + kDefault + " --runs 3 --jobs 1 --seed0 500 --out " +
@@ -191,6 +192,24 @@ TEST_CASE("a run that dies is reported with its log and exit status, and the oth
   CHECK(summary["failed_runs"][0]["seed"] == 500);
   CHECK(summary["failed_runs"][0]["exit_code"] == 137);
   CHECK(summary["metrics"]["steps"]["count"] == 2);
+
+  // --resume runs again only the run that died: the others keep their recordings.
+  const auto run2_recording = fs::last_write_time(fs::path(out) / "run-2" / "recording.sqlite");
+  const auto resumed = test::runCommand(test::kFlatsat + " mc --resume " + out);
+  INFO(resumed.output);
+  CHECK(resumed.exit_code == 0);
+  CHECK(resumed.output.find("mc: 1 composed runs of 'default'") != std::string::npos);
+  CHECK(fs::last_write_time(fs::path(out) / "run-2" / "recording.sqlite") == run2_recording);
+  const test::Csv after = test::readCsv(fs::path(out) / "mc.csv");
+  REQUIRE(after.rows.size() == 3);
+  for (const auto& row : after.rows) {
+    CHECK(row.at("exit_code") == "0");
+    CHECK(row.at("steps") == "10001");
+  }
+  CHECK_FALSE(fs::exists(fs::path(out) / "run-0.log"));
+  const auto nothing_left = test::runCommand(test::kFlatsat + " mc --resume " + out);
+  CHECK(nothing_left.exit_code == 0);
+  CHECK(nothing_left.output.find("nothing to resume") != std::string::npos);
   fs::remove_all(out);
   fs::remove(log);
 }
