@@ -97,12 +97,12 @@ nlohmann::ordered_json toJson(const RecordingInfo& info) {
   j["recording_sha256"] = info.digest;
   j["first_step"] = info.first_step;
   j["last_step"] = info.last_step;
-  j["sim_duration_s"] = info.sim_duration_s;
-  j["wall_duration_s"] = info.wall_duration_s;
+  j["duration_sim_s"] = info.sim_duration_s;
+  j["duration_wall_s"] = info.wall_duration_s;
   j["samples"] = info.samples;
   auto& topics = j["topics"] = nlohmann::ordered_json::array();
   for (const auto& t : info.topics) {
-    topics.push_back({{"topic", t.name}, {"type", t.type}, {"samples", t.samples}, {"rate_hz", t.rate_hz},
+    topics.push_back({{"name", t.name}, {"type", t.type}, {"count", t.samples}, {"rate_hz", t.rate_hz},
                       {"sources", t.sources}});
   }
   return j;

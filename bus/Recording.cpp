@@ -297,6 +297,18 @@ void Recording::forEach(
   }
 }
 
+void Recording::forEachSample(
+    const std::function<void(const std::string&, std::uint64_t, const std::string&, std::int64_t,
+                             const std::vector<std::uint8_t>&)>& visit) const {
+  const auto lock = settle();
+  Statement s(db_, "SELECT topic, step, source, sim_time_ns, payload FROM samples ORDER BY step, topic, source",
+              path_);
+  while (sqlite3_step(s.stmt) == SQLITE_ROW) {
+    visit(text(s.stmt, 0), static_cast<std::uint64_t>(sqlite3_column_int64(s.stmt, 1)), text(s.stmt, 2),
+          sqlite3_column_int64(s.stmt, 3), blob(s.stmt, 4));
+  }
+}
+
 void Recording::forEachAt(
     const std::string& topic, std::uint64_t step,
     const std::function<void(const std::string&, const std::vector<std::uint8_t>&)>& visit) const {

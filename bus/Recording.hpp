@@ -63,6 +63,11 @@ class Recording {
                const std::function<void(std::uint64_t step, const std::string& source,
                                         const std::vector<std::uint8_t>& payload)>& visit,
                Order order = Order::kStep) const;
+  /// Visits every sample of every topic in step order (then topic, source),
+  /// with the simulated time it was recorded at.
+  void forEachSample(const std::function<void(const std::string& topic, std::uint64_t step,
+                                              const std::string& source, std::int64_t sim_time_ns,
+                                              const std::vector<std::uint8_t>& payload)>& visit) const;
   /// Visits the samples of one topic stamped `step` (one per source).
   void forEachAt(const std::string& topic, std::uint64_t step,
                  const std::function<void(const std::string& source,

@@ -20,15 +20,19 @@ packages=(
   build-essential cmake pkg-config
   libfastrtps-dev libfastcdr-dev fastddsgen fastdds-tools
   libeigen3-dev catch2 libspdlog-dev libyaml-cpp-dev libcli11-dev nlohmann-json3-dev
-  libsqlite3-dev sqlite3 libssl-dev openssl
+  libsqlite3-dev sqlite3 libssl-dev openssl libzstd-dev
   iproute2 tcpdump procps
   python3 gnuplot-nox
 )
 # Only for `test`: the compose rig's engine, base image and network filter, the
-# browser the live web view is tested in, and a single-node Slurm cluster for
+# browser the live web view is tested in, a single-node Slurm cluster for
 # `flatsat mc --slurm` (deploy/slurm/local-cluster.sh; its daemons start only
-# in that test).
+# in that test), and Node.js for the interop tier's published readers
+# (tests/interop: npm ci of its package-lock.json).
 test_packages=(docker.io docker-compose debootstrap nftables chromium munge slurmctld slurmd slurm-client)
+# Node.js from Debian unless one is installed already (another vendor's
+# nodejs carries its own npm, and Debian's npm would conflict with it).
+command -v npm >/dev/null 2>&1 || test_packages+=(nodejs npm)
 # Only for `fuzz` and `test`: clang with libFuzzer and the sanitizer runtimes.
 fuzz_packages=(clang libclang-rt-14-dev)
 fuzz_build="${FLATSAT_FUZZ_BUILD_DIR:-$here/build-fuzz}"
@@ -97,6 +101,7 @@ case "$cmd" in
     # suite then stays under 20 minutes on two cores.
     cmake -S "$here" -B "$build" -DFLATSAT_FUZZERS_DIR="$fuzz_build/bin" -DFLATSAT_FUZZ_SECONDS=30 >/dev/null
     start_docker
+    npm ci --prefix "$here/tests/interop" --no-audit --no-fund >&2
     cd "$build"
     # Every test holds a core of this resource spec, so $jobs run at once, and
     # a paced one holds them all; the one slot more is for the soak (10 min

@@ -1,8 +1,12 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "tools/ReportErrors.hpp"
 #include "tools/ExportCommand.hpp"
+#include "analysis/McapExport.hpp"
+#include "flatsat_version.hpp"
 
 #include <algorithm>
+#include <chrono>
+#include <cstdio>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -24,6 +28,7 @@ struct ExportOptions {
   std::string recording;
   bool csv = false;
   bool json = false;
+  std::string mcap;                 ///< --mcap OUT: one MCAP file of every topic
   std::vector<std::string> topics;  ///< empty: every recorded topic
   std::string out;                  ///< empty: <recording's folder>/export
 };
@@ -89,6 +94,14 @@ int exportRecording(const ExportOptions& o) {
     std::cerr << "error: " << o.recording << ": no such recording\n";
     return 2;
   }
+  if (!o.mcap.empty()) {
+    const auto start = std::chrono::steady_clock::now();
+    const auto counts = analysis::exportMcap(o.recording, o.mcap, std::string("flatsat ") + kFlatsatVersion);
+    std::printf("%s: %llu messages on %llu channels in %.2f s\n", o.mcap.c_str(),
+                static_cast<unsigned long long>(counts.messages), static_cast<unsigned long long>(counts.channels),
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    return 0;
+  }
   for (const auto& topic : o.topics) {
     if (!withTopic(topic, [](const auto&) {})) {
       std::cerr << "error: unknown topic '" << topic << "'; topics: " << registryTopicNames()
@@ -136,7 +149,11 @@ CLI::App* addExportCommand(CLI::App& app, int& exit_code) {
                             "one row per sample; booleans 0/1");
   auto* json = cmd->add_flag("--json", options->json,
                              "JSON lines: one object per sample, fields as in the IDL");
+  auto* mcap = cmd->add_option("--mcap", options->mcap,
+                               "one MCAP file of every topic (omgidl schemas, CDR as recorded, zstd chunks, "
+                               "indexed) for Foxglove, Lichtblick and the mcap tools");
   csv->excludes(json);
+  mcap->excludes(csv)->excludes(json);
   cmd->add_option("-t,--topic", options->topics,
                   "only this topic (repeatable; flatsat/truth or truth)");
   cmd->add_option("-o,--out", options->out,
@@ -144,10 +161,12 @@ CLI::App* addExportCommand(CLI::App& app, int& exit_code) {
   cmd->footer(
       "Files are named after the topic: truth.csv, gyro.jsonl, ... Samples come in\n"
       "step order; columns and fields follow the IDL (idl/*.idl), units from its\n"
-      "'// [unit]' comments.");
+      "'// [unit]' comments. --mcap writes one file: a channel per recorded topic, and\n"
+      "for viewing flatsat/tf/truth and flatsat/tf/estimate (foxglove.FrameTransform)\n"
+      "and flatsat/log (foxglove.Log: faults, health changes); times are simulated.");
   cmd->callback([options, &exit_code] {
-    if (options->csv == options->json) {
-      std::cerr << "error: export: give --csv or --json\n";
+    if (options->mcap.empty() && options->csv == options->json) {
+      std::cerr << "error: export: give --csv, --json or --mcap OUT\n";
       exit_code = 2;
       return;
     }

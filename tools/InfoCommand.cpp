@@ -4,6 +4,7 @@
 #include <iostream>
 #include <memory>
 
+#include "analysis/McapExport.hpp"
 #include "analysis/RecordingInfo.hpp"
 #include "tools/ReportErrors.hpp"
 
@@ -17,15 +18,18 @@ CLI::App* addInfoCommand(CLI::App& app, int& exit_code) {
   auto options = std::make_shared<Options>();
   auto* cmd = app.add_subcommand("info", "what a recording holds: scenario, digest, durations, size, and per topic "
                                          "its type, samples and rate");
-  cmd->add_option("recording", options->recording, "recording.sqlite of a run")->required();
+  cmd->add_option("recording", options->recording, "recording.sqlite of a run, or an MCAP file of flatsat export --mcap")
+      ->required();
   cmd->add_flag("--json", options->json, "one JSON object instead of the table");
   cmd->footer(
       "The digest is the run's recording_sha256 (summary.json): every sample but the\n"
       "wall-clock ones. Rates are samples over the whole run's simulated span; the wall\n"
-      "duration spans the recorded health samples' clocks.");
+      "duration spans the recorded health samples' clocks. Of an MCAP file it reads the\n"
+      "summary and the \"flatsat\" metadata, and lists the derived channels too.");
   cmd->callback([options, &exit_code] {
     runReportingErrors(exit_code, [&] {
-      const auto info = analysis::describeRecording(options->recording);
+      const auto info = analysis::isMcap(options->recording) ? analysis::describeMcap(options->recording)
+                                                             : analysis::describeRecording(options->recording);
       if (options->json) {
         std::cout << analysis::toJson(info).dump(2) << "\n";
       } else {

@@ -323,17 +323,17 @@ TEST_CASE("export writes one CSV per recorded topic: a row per step, units in th
   REQUIRE(info["topics"].size() == by_sqlite.size());
   const double span_s = static_cast<double>(last_ns - first_ns) * 1e-9;
   CHECK(span_s == Approx(60.0));  // the run's 60 s
-  CHECK(info["sim_duration_s"].get<double>() == Approx(span_s).margin(1e-9));
+  CHECK(info["duration_sim_s"].get<double>() == Approx(span_s).margin(1e-9));
   CHECK(info["first_step"] == 0);
   CHECK(info["last_step"] == 600);
   for (const auto& t : info["topics"]) {
     CAPTURE(t.dump());
-    CHECK(t["samples"] == by_sqlite.at(t["topic"]));
-    CHECK(t["rate_hz"].get<double>() == Approx(static_cast<double>(by_sqlite.at(t["topic"])) / span_s));
+    CHECK(t["count"] == by_sqlite.at(t["name"]));
+    CHECK(t["rate_hz"].get<double>() == Approx(static_cast<double>(by_sqlite.at(t["name"])) / span_s));
   }
-  CHECK(info["topics"][11]["topic"] == "flatsat/truth");
+  CHECK(info["topics"][11]["name"] == "flatsat/truth");
   CHECK(info["topics"][11]["type"] == "flatsat::msg::TruthState");
-  CHECK(info["wall_duration_s"].get<double>() > 0.0);
+  CHECK(info["duration_wall_s"].get<double>() > 0.0);
   const auto table = tool("info " + recording);
   CHECK(table.output.find("Digest:        " + info["recording_sha256"].get<std::string>()) != std::string::npos);
   CHECK(tool("info " + run + "/nothing.sqlite").exit_code == 1);
