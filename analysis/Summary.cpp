@@ -209,8 +209,10 @@ nlohmann::ordered_json summarize(const bus::Scenario& scenario, const std::strin
   s["steps_per_second"] = launch.step_seconds > 0 ? static_cast<double>(steps) / launch.step_seconds : 0.0;
   s["processes"] = launch.processes;
   s["acquisition_seconds"] = scenario.acquisition_s;
-  s["pointing_error_deg_max"] = truth.pointing_max * kRadToDeg;
-  s["pointing_error_deg_mean"] = truth.pointing_count ? truth.pointing_sum / truth.pointing_count * kRadToDeg : 0.0;
+  // Not measured (a run that ended before acquisition_s) is null, never a perfect 0.
+  s["pointing_error_deg_max"] = truth.pointing_count ? nlohmann::ordered_json(truth.pointing_max * kRadToDeg) : nullptr;
+  s["pointing_error_deg_mean"] =
+      truth.pointing_count ? nlohmann::ordered_json(truth.pointing_sum / truth.pointing_count * kRadToDeg) : nullptr;
   s["wheel_capacity_Nms"] = capacity;
   s["wheel_momentum_Nms_start"] = truth.h.start;
   s["wheel_momentum_Nms_max"] = truth.h.max;

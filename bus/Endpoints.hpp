@@ -69,22 +69,6 @@ class Writer {
     writer_->get_publication_matched_status(status);
     return status.current_count;
   }
-  /// The participants (GUID prefixes) of the readers matched now.
-  /// In-process there are no participants: throws std::logic_error.
-  std::vector<eprosima::fastrtps::rtps::GuidPrefix_t> matchedReaderParticipants() const {
-    if (local_ != nullptr) {
-      throw std::logic_error(name_ + ": an in-process writer has no participants to list");
-    }
-    std::vector<eprosima::fastdds::dds::InstanceHandle_t> handles;
-    writer_->get_matched_subscriptions(handles);
-    std::vector<eprosima::fastrtps::rtps::GuidPrefix_t> prefixes;
-    for (const auto& handle : handles) {
-      eprosima::fastrtps::rtps::GUID_t guid;
-      eprosima::fastrtps::rtps::iHandle2GUID(guid, handle);
-      prefixes.push_back(guid.guidPrefix);
-    }
-    return prefixes;
-  }
   /// Blocks until every matched reader acknowledged what was written
   /// (in-process: at once, a write returns once every reader has the sample).
   bool waitForAcknowledgments(std::chrono::milliseconds timeout) {

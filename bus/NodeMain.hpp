@@ -76,6 +76,10 @@ int runNode(int argc, char** argv, const std::string& default_name, Read&& read,
     spdlog::error("{}", e.what());
     return 2;
   } catch (const std::exception& e) {
+    if (shutdownRequested()) {  // Ctrl-C or SIGTERM: the operator's stop, not a fault of this node
+      spdlog::warn("{}: stopped by a signal before the run's end ({})", args.name, e.what());
+      return 130;
+    }
     spdlog::error("{}: {}", args.name, e.what());
     return 1;
   }

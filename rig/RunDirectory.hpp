@@ -12,6 +12,14 @@ namespace flatsat::rig {
 std::string writeRunScenario(const std::string& scenario_file, const std::string& run_dir,
                              const std::vector<std::string>& overrides);
 
+/// A problem found in a scenario that writeRunScenario() resolved, told in
+/// the user's terms: "<resolved>:L:C: key: reason" becomes "--set k=v: key:
+/// reason" when the key (or a parent of it) came from an override, else
+/// "<scenario_file>:L:C: key: reason" at the key's place in that file when it
+/// is there. Anything else is returned as it is.
+std::string attributeProblem(const std::string& problem, const std::string& resolved,
+                             const std::string& scenario_file, const std::vector<std::string>& overrides);
+
 /// The override that records one step per simulated second at base period
 /// step_s, as 42 writes its output files (every step when step_s >= 1 s).
 /// The recorder's transactions then hold 50 recorded steps by default.

@@ -45,14 +45,6 @@ bool recorderDiscovered(const ToolBus& tool_bus) {
   return false;
 }
 
-template <class Def>
-bool recorderMatched(const ToolBus& tool_bus, const bus::Writer<Def>& writer) {
-  for (const auto& prefix : writer.matchedReaderParticipants()) {
-    if (tool_bus.participantName(prefix) == kRecorder) return true;
-  }
-  return false;
-}
-
 /// Writes `command` on `def`'s topic (kept for late joiners while the tool
 /// waits: transient-local) and waits for the acknowledgement carrying its id.
 template <class Def>
@@ -95,10 +87,11 @@ int send(const Def& def, typename Def::Type command, const std::string& what, co
   lock.unlock();
   // The component matched this writer, the rig's recorder may not have yet: its
   // participant announces itself 0..3 s late when a first announcement is lost
-  // under load. Keep the command on offer (transient-local) until a reader of
-  // the recorder's participant has matched, or discovery found no recorder.
+  // under load. Keep the command on offer (transient-local) until discovery
+  // has announced the recorder's reader of this topic (matched as it is
+  // announced), or found no recorder; then until every matched reader has it.
   const auto discovery_end = started + std::chrono::duration<double>(kDiscoverySeconds);
-  while (!recorderMatched(tool_bus, writer) && Clock::now() < deadline) {
+  while (!tool_bus.readerDiscovered(std::string(def.name), kRecorder) && Clock::now() < deadline) {
     if (Clock::now() > discovery_end && !recorderDiscovered(tool_bus)) break;
     if (!sleepUnlessInterrupted(0.05)) break;
   }

@@ -120,6 +120,22 @@ void ToolBus::on_publisher_discovery(dds::DomainParticipant*, rtps::WriterDiscov
   entry.alive = info.status != rtps::WriterDiscoveryInfo::REMOVED_WRITER;
 }
 
+void ToolBus::on_subscriber_discovery(dds::DomainParticipant*, rtps::ReaderDiscoveryInfo&& info) {
+  std::lock_guard lock(mutex_);
+  readers_[info.info.guid()] = {info.info.topicName().to_string(),
+                                info.status != rtps::ReaderDiscoveryInfo::REMOVED_READER};
+}
+
+bool ToolBus::readerDiscovered(const std::string& topic, const std::string& participant) const {
+  std::lock_guard lock(mutex_);
+  for (const auto& [guid, reader] : readers_) {
+    if (!reader.second || reader.first != topic) continue;
+    const auto it = participants_.find(guid.guidPrefix);
+    if (it != participants_.end() && it->second.alive && it->second.name == participant) return true;
+  }
+  return false;
+}
+
 std::map<GuidPrefix, ParticipantInfo> ToolBus::participants() const {
   std::lock_guard lock(mutex_);
   auto out = participants_;

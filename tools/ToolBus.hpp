@@ -74,18 +74,25 @@ class ToolBus : private eprosima::fastdds::dds::DomainParticipantListener {
   std::vector<WriterInfo> writers() const;
   /// The participant name of a writer's participant; "" when unknown.
   std::string participantName(const GuidPrefix& prefix) const;
+  /// Whether discovery announced a live reader of `topic` in the participant
+  /// named `participant` (Fast DDS 2.9 cannot list a writer's matched readers:
+  /// DataWriter::get_matched_subscriptions returns RETCODE_UNSUPPORTED).
+  bool readerDiscovered(const std::string& topic, const std::string& participant) const;
 
  private:
   void on_participant_discovery(eprosima::fastdds::dds::DomainParticipant* participant,
                                 eprosima::fastrtps::rtps::ParticipantDiscoveryInfo&& info) override;
   void on_publisher_discovery(eprosima::fastdds::dds::DomainParticipant* participant,
                               eprosima::fastrtps::rtps::WriterDiscoveryInfo&& info) override;
+  void on_subscriber_discovery(eprosima::fastdds::dds::DomainParticipant* participant,
+                               eprosima::fastrtps::rtps::ReaderDiscoveryInfo&& info) override;
 
   std::uint32_t domain_;
   mutable std::mutex mutex_;
   GuidPrefix own_prefix_;
   std::map<GuidPrefix, ParticipantInfo> participants_;
   std::map<Guid, WriterInfo> writers_;
+  std::map<Guid, std::pair<std::string, bool>> readers_;  // topic, alive
   std::unique_ptr<bus::Bus> bus_;  // last: destroyed first, before what its callbacks touch
 };
 

@@ -59,20 +59,64 @@ namespace {
 constexpr int kExitFailed = 1;
 using analysis::kExitBadInput;
 
+/// Where a resolved scenario came from: its file and the --set overrides laid over it.
+struct ScenarioOrigin {
+  std::string file;
+  std::vector<std::string> overrides;
+};
+
 /// Loads a scenario and checks every component's parameters; prints every
-/// problem and returns false when there is any.
-bool loadChecked(const std::string& file, const std::string& out_dir, bus::Scenario& scenario) {
+/// problem and returns false when there is any. A scenario resolved from
+/// `origin` has its problems told at the user's file or --set argument.
+bool loadChecked(const std::string& file, const std::string& out_dir, bus::Scenario& scenario,
+                 const ScenarioOrigin* origin = nullptr) {
+  auto told = [&](const std::string& problem) {
+    return origin ? rig::attributeProblem(problem, file, origin->file, origin->overrides) : problem;
+  };
   try {
     scenario = bus::loadScenario(file);
   } catch (const bus::ScenarioError& e) {
-    std::cerr << "error: " << e.what() << "\n";
+    std::cerr << "error: " << told(e.what()) << "\n";
     return false;
   }
   const auto problems = checkScenario(scenario, out_dir.empty() ? "." : out_dir);
   if (problems.empty()) return true;
-  std::cerr << "error: " << file << ": invalid scenario:\n";
-  for (const auto& p : problems) std::cerr << "  " << p << "\n";
+  std::cerr << "error: " << (origin ? origin->file : file) << ": invalid scenario:\n";
+  for (const auto& p : problems) std::cerr << "  " << told(p) << "\n";
   return false;
+}
+
+/// Parses the command line. --help and --version print theirs (exit 0); a
+/// command-line error prints the error and the usage of the command it was
+/// for and gives exit status 2, as every Unix tool does (not CLI11's 106..109).
+std::optional<int> parseCommandLine(CLI::App& app, int argc, char** argv) {
+  const std::string first = argc > 1 ? argv[1] : "";
+  if (!first.empty() && first[0] != '-' &&
+      app.get_subcommands([&](CLI::App* s) { return s->check_name(first); }).empty()) {
+    std::string commands;
+    for (const auto* sub : app.get_subcommands([](CLI::App* s) { return !s->get_group().empty(); })) {
+      commands += (commands.empty() ? "" : ", ") + sub->get_name();
+    }
+    std::cerr << "error: unknown command '" << argv[1] << "'; the commands: " << commands
+              << "\nRun 'flatsat --help' for what each does.\n";
+    return kExitBadInput;
+  }
+  try {
+    app.parse(argc, argv);
+    return std::nullopt;
+  } catch (const CLI::Success& e) {  // --help, --help-all, --version
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    const CLI::App* command = &app;
+    std::string name = "flatsat";
+    while (!command->get_subcommands().empty()) {
+      command = command->get_subcommands().front();
+      name += " " + command->get_name();
+    }
+    std::cerr << "error: " << e.what() << "\n"
+              << CLI::Formatter().make_usage(command, name) << "Run '" << name << " --help' for more.\n";
+    return kExitBadInput;
+  }
 }
 
 struct RunOptions {
@@ -192,8 +236,8 @@ bool prepareResumedRun(const RunOptions& o, const bus::Scenario& original, bus::
 
 /// The summary of a run that failed: what its recording shows, where it
 /// can still be read, with `completed: false` and the launcher's reason.
-void writeFailedSummary(const bus::Scenario& scenario, const std::string& run_dir,
-                        const rig::LaunchResult& result) {
+nlohmann::ordered_json writeFailedSummary(const bus::Scenario& scenario, const std::string& run_dir,
+                                          const rig::LaunchResult& result) {
   nlohmann::ordered_json summary;
   try {
     summary = scenario.spacecraft_count > 1
@@ -206,6 +250,25 @@ void writeFailedSummary(const bus::Scenario& scenario, const std::string& run_di
   summary["completed"] = false;
   summary["end_reason"] = result.failure;
   std::ofstream(fs::path(run_dir) / "summary.json") << summary.dump(2) << "\n";
+  return summary;
+}
+
+/// Exit status of a run stopped by Ctrl-C or SIGTERM, as shells report a
+/// process killed by SIGINT (128 + 2).
+constexpr int kExitInterrupted = 130;
+
+/// What an interrupted run tells: the step its recording reached, and how it goes on.
+void sayInterrupted(const RunOptions& o, const bus::Scenario& scenario, const std::string& run_dir,
+                    const nlohmann::ordered_json& summary) {
+  const auto steps = summary.value("steps", std::uint64_t{0});
+  std::cerr << "flatsat: interrupted; the recording holds steps 0.." << (steps > 0 ? steps - 1 : 0) << " ("
+            << summary.value("sim_seconds", 0.0) << " s simulated), summary.json says completed: false\n";
+  if (scenario.pacing == bus::Pacing::kLockstep && scenario.spacecraft_count == 1) {
+    std::cerr << "flatsat: to go on from there: flatsat run " << o.scenario << " --resume " << run_dir
+              << (o.composed ? " --composed" : "") << "\n";
+  } else {
+    std::cerr << "flatsat: a paced run (or a fleet) cannot be resumed: run it again\n";
+  }
 }
 
 int run(const RunOptions& o, nlohmann::ordered_json* summary_out = nullptr) {
@@ -242,10 +305,15 @@ int run(const RunOptions& o, nlohmann::ordered_json* summary_out = nullptr) {
       }
     }
     const std::string resolved = rig::writeRunScenario(o.scenario, run_dir, overrides);
-    if (!loadChecked(resolved, run_dir, scenario)) return kExitBadInput;
+    const ScenarioOrigin origin{o.scenario, overrides};
+    if (!loadChecked(resolved, run_dir, scenario, &origin)) {
+      if (new_run_dir) fs::remove_all(run_dir);  // a run that never started leaves no folder
+      return kExitBadInput;
+    }
     for (const auto& caution : scenarioCautions(scenario)) spdlog::warn("{}", caution);
   } catch (const std::exception& e) {
     std::cerr << "error: " << e.what() << "\n";
+    if (new_run_dir) fs::remove_all(run_dir);
     return kExitBadInput;
   }
   if (const auto problems = o.composed ? rig::composedProblems(scenario) : std::vector<std::string>{};
@@ -301,7 +369,11 @@ int run(const RunOptions& o, nlohmann::ordered_json* summary_out = nullptr) {
   if (!o.composed) rig::cleanStaleSharedMemory(rig::kShmGrace);
   if (!result.ok) {
     std::cerr << "error: " << result.failure << "\n";
-    writeFailedSummary(scenario, run_dir, result);
+    const auto summary = writeFailedSummary(scenario, run_dir, result);
+    if (bus::shutdownRequested()) {
+      sayInterrupted(o, scenario, run_dir, summary);
+      return kExitInterrupted;
+    }
     return kExitFailed;
   }
   if (!o.resume.empty()) {
@@ -628,6 +700,8 @@ int main(int argc, char** argv) {
       "check", "check a scenario without running it: file:line:col, key and reason per problem");
   check_cmd->alias("validate");
   check_cmd->add_option("scenario", check_file, "scenario file (YAML)")->required();
+  std::vector<std::string> check_overrides;
+  check_cmd->add_option("--set", check_overrides, "override a scenario key, as flatsat run does: key.path=value");
 
   std::string bench_scenario = defaultScenario();
   double bench_duration_s = 600.0;
@@ -672,7 +746,7 @@ int main(int argc, char** argv) {
                    "keep files younger than this [s] (a rig starting now may not have mapped them yet)")
       ->check(CLI::Range(0.0, 86400.0));
 
-  CLI11_PARSE(app, argc, argv);
+  if (const auto exit = parseCommandLine(app, argc, argv)) return *exit;
   if (run_cmd->parsed()) return run(run_options);
   if (orbit_cmd->parsed()) return orbit_exit;
   if (field_cmd->parsed()) return field_exit;
@@ -695,7 +769,26 @@ int main(int argc, char** argv) {
   if (bench_cmd->parsed() && bench_resume) return resumeFigures(bench_scenario, bench_duration_s, bench_quick);
   if (bench_cmd->parsed()) return bench(bench_scenario, bench_duration_s, bench_quick);
   bus::Scenario scenario;
-  if (!loadChecked(check_file, "", scenario)) return kExitBadInput;
+  if (!check_overrides.empty()) {
+    // The scenario resolved as `flatsat run` resolves it, in a folder of its own.
+    char folder[] = "/tmp/flatsat-check-XXXXXX";
+    if (::mkdtemp(folder) == nullptr) {
+      std::cerr << "error: cannot make a temporary folder\n";
+      return kExitFailed;
+    }
+    bool ok = false;
+    try {
+      const std::string resolved = rig::writeRunScenario(check_file, folder, check_overrides);
+      const ScenarioOrigin origin{check_file, check_overrides};
+      ok = loadChecked(resolved, folder, scenario, &origin);
+    } catch (const std::exception& e) {
+      std::cerr << "error: " << e.what() << "\n";
+    }
+    fs::remove_all(folder);
+    if (!ok) return kExitBadInput;
+  } else if (!loadChecked(check_file, "", scenario)) {
+    return kExitBadInput;
+  }
   for (const auto& caution : scenarioCautions(scenario)) std::cout << "caution: " << caution << "\n";
   std::cout << check_file << ": ok (" << scenario.components.size() << " components)\n";
   return 0;

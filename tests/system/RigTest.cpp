@@ -3,6 +3,9 @@
 // loopback, judged on the recorded truth.
 #include <catch2/catch.hpp>
 
+#include <chrono>
+#include <csignal>
+#include <thread>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -114,4 +117,37 @@ TEST_CASE("a component that dies stops the run, and the launcher says which", "[
   INFO(result.output);
   CHECK(result.output.rfind("1\n", 0) == 0);  // the launcher's exit code
   CHECK(result.output.find("component 'gyro' died (killed by signal 9)") != std::string::npos);
+}
+
+TEST_CASE("Ctrl-C on a run exits 130, keeps its summary with the step reached, and says how to resume",
+          "[system]") {
+  test::exportTestDomain();
+  const std::string out = freshDir("interrupted");
+  const std::string log = out + ".log";
+  const pid_t run = test::startCommand(kFlatsat + " run " + kDefault + " --no-plots --out " + out +
+                                           " --set duration_orbits=1",
+                                       log);
+  // Interrupted once the recorder holds some steps.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  while (std::chrono::steady_clock::now() < deadline &&
+         test::readFile(log).find("steps/s") == std::string::npos) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  std::this_thread::sleep_for(std::chrono::seconds(1));
+  ::kill(run, SIGINT);
+  const int exit_code = test::waitCommand(run);
+  const std::string output = test::readFile(log);
+  INFO(output);
+  CHECK(exit_code == 130);
+  nlohmann::json summary;
+  std::ifstream(fs::path(out) / "summary.json") >> summary;
+  CHECK(summary["completed"] == false);
+  REQUIRE(summary["steps"].get<std::uint64_t>() > 0);
+  CHECK(output.find("flatsat: interrupted; the recording holds steps 0.." +
+                    std::to_string(summary["steps"].get<std::uint64_t>() - 1)) != std::string::npos);
+  CHECK(output.find("flatsat run " + kDefault + " --resume " + out) != std::string::npos);
+  // The operator's stop is no component's error.
+  CHECK(test::readFile(out + "/logs/recorder.log").find("[error]") == std::string::npos);
+  fs::remove_all(out);
+  fs::remove(log);
 }

@@ -141,6 +141,53 @@ TEST_CASE("every tool subcommand explains itself with --help", "[system][tools]"
   }
 }
 
+TEST_CASE("a command-line error exits 2 with the error and the command's usage; an unknown command is named",
+          "[system][tools]") {
+  struct Case {
+    std::string args, says, usage;
+  };
+  for (const auto& c : {Case{"frobnicate", "error: unknown command 'frobnicate'; the commands: run, check,", ""},
+                        Case{"", "error: A subcommand is required", "Usage: flatsat [OPTIONS] SUBCOMMAND"},
+                        Case{"run", "error: scenario is required", "Usage: flatsat run [OPTIONS] scenario"},
+                        Case{"export x --csv --json", "error: --csv excludes --json", "Usage: flatsat export"},
+                        Case{"mc --runs", "error: --runs: 1 required INT missing", "Usage: flatsat mc"},
+                        Case{"info --no-such-flag x", "error: The following argument was not expected: --no-such-flag",
+                             "Usage: flatsat info"}}) {
+    CAPTURE(c.args);
+    const auto result = test::runCommand(kFlatsat + " " + c.args);
+    INFO(result.output);
+    CHECK(result.exit_code == 2);
+    CHECK(result.output.find(c.says) != std::string::npos);
+    CHECK(result.output.find(c.usage) != std::string::npos);
+  }
+  const auto version = test::runCommand(kFlatsat + " --version");
+  CHECK(version.exit_code == 0);
+  CHECK(version.output.rfind("0.1.0", 0) == 0);
+}
+
+TEST_CASE("validate takes --set as run does, and a problem of a --set is told at the --set; a run refused "
+          "for one leaves no folder",
+          "[system][tools]") {
+  const std::string scenario = std::string(FLATSAT_SCENARIO_DIR) + "/default.yaml";
+  const auto ok = test::runCommand(kFlatsat + " validate " + scenario +
+                                   " --set duration_orbits=null --set duration_s=10");
+  INFO(ok.output);
+  CHECK(ok.exit_code == 0);
+  CHECK(ok.output.find(": ok (") != std::string::npos);
+  const auto bad = test::runCommand(kFlatsat + " validate " + scenario + " --set components.gyro.noise_typo=1");
+  INFO(bad.output);
+  CHECK(bad.exit_code == 2);
+  CHECK(bad.output.find("--set components.gyro.noise_typo=1: components.gyro.noise_typo: unknown key") !=
+        std::string::npos);
+  CHECK(bad.output.find("/tmp/flatsat-check-") == std::string::npos);  // not the resolved copy's place
+  const std::string run = test::freshDir("refused-run");
+  const auto refused = test::runCommand(test::runLine(scenario, run, "--set components.gyro.noise_typo=1"));
+  INFO(refused.output);
+  CHECK(refused.exit_code == 2);
+  CHECK(refused.output.find("--set components.gyro.noise_typo=1:") != std::string::npos);
+  CHECK_FALSE(fs::exists(run));
+}
+
 TEST_CASE("topics lists the registry topics with their producers and rates", "[system][tools]") {
   BackgroundRig rig("topics");
   const auto result = tool("topics --seconds 3 --json");

@@ -111,4 +111,7 @@ TEST_CASE("a recording that stops short of the final step is not a completed run
   const auto s = analysis::summarize(scenario, path, analysis::RunOutcome{});
   CHECK(s["completed"] == false);
   CHECK(s["end_reason"] == "the recording ends at step 12 of 20");
+  // No truth past acquisition_s: the pointing was not measured, which is not a perfect 0.
+  CHECK(s["pointing_error_deg_max"].is_null());
+  CHECK(s["pointing_error_deg_mean"].is_null());
 }
