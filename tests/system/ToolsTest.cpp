@@ -141,7 +141,7 @@ TEST_CASE("every tool subcommand explains itself with --help", "[system][tools]"
   }
 }
 
-TEST_CASE("a command-line error exits 2 with the error and the command's usage; an unknown command is named",
+TEST_CASE("a command-line error exits 2 with the error and the command's usage, and an unknown command is named",
           "[system][tools]") {
   struct Case {
     std::string args, says, usage;
@@ -165,7 +165,7 @@ TEST_CASE("a command-line error exits 2 with the error and the command's usage; 
   CHECK(version.output.rfind("0.1.0", 0) == 0);
 }
 
-TEST_CASE("validate takes --set as run does, and a problem of a --set is told at the --set; a run refused "
+TEST_CASE("validate takes --set as run does, a problem of a --set is told at the --set, and a run refused "
           "for one leaves no folder",
           "[system][tools]") {
   const std::string scenario = std::string(FLATSAT_SCENARIO_DIR) + "/default.yaml";
