@@ -32,7 +32,13 @@ struct RecordOptions {
   std::vector<std::string> topics;  ///< empty: every registry topic
   double seconds = 0.0;             ///< [s] wall time limit, 0: none
   int domain = -1;
+  bool force = false;               ///< replace an existing file
 };
+
+/// The recording and SQLite's files beside it.
+void removeRecording(const std::string& path) {
+  for (const std::string suffix : {"", "-wal", "-shm"}) fs::remove(path + suffix);
+}
 
 /// The file and what went into it; readers store from Fast DDS threads.
 class Sink {
@@ -77,12 +83,14 @@ int record(const RecordOptions& o) {
       return 2;
     }
   }
-  if (fs::exists(o.out)) {
-    std::cerr << "error: " << o.out << " exists; choose another --out\n";
+  if (fs::exists(o.out) && !o.force) {
+    std::cerr << "error: " << o.out << " exists; choose another --out, or --force to replace it\n";
     return 2;
   }
+  if (o.force) removeRecording(o.out);
   if (fs::path(o.out).has_parent_path()) fs::create_directories(fs::path(o.out).parent_path());
-  Sink sink(o.out);
+  auto owned_sink = std::make_unique<Sink>(o.out);
+  Sink& sink = *owned_sink;
   ToolBus tool_bus("record", o.domain);
   sink.setMeta("recorded_by", "flatsat record");
   sink.setMeta("domain", std::to_string(tool_bus.domain()));
@@ -134,7 +142,10 @@ int record(const RecordOptions& o) {
   std::printf("recorded %llu samples on %zu topics%s\n", static_cast<unsigned long long>(total),
               counts.size(), stopped ? " (the rig stopped)" : "");
   if (total == 0) {
-    std::cerr << "flatsat record: nothing came on domain " << tool_bus.domain() << "\n";
+    owned_sink.reset();  // closed before it goes: an empty recording is no recording
+    removeRecording(o.out);
+    std::cerr << "flatsat record: nothing came on domain " << tool_bus.domain() << "; " << o.out
+              << " not kept\n";
     return 1;
   }
   return 0;
@@ -151,12 +162,14 @@ CLI::App* addRecordCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("-s,--seconds", options->seconds,
                   "[s] stop after this much wall time (default: when the rig stops)")
       ->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--force", options->force, "replace --out when it exists");
   addDomainOption(*cmd, options->domain);
   cmd->footer(
       "The file has the format of a run's recording.sqlite: export, plot and replay\n"
       "read it. Readers take the rig's own QoS (reliable, transient-local), so the\n"
       "last 64 steps before the tool joined come too. Recording stops 1 s after the\n"
-      "rig's stop grant, on --seconds or on Ctrl-C; committed every 0.5 s.");
+      "rig's stop grant, on --seconds or on Ctrl-C; committed every 0.5 s. When\n"
+      "nothing came, no file is left.");
   cmd->callback([options, &exit_code] { runReportingErrors(exit_code, [&] { return record(*options); }); });
   return cmd;
 }

@@ -7,6 +7,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <fstream>
 #include <thread>
 
 #include "tests/support/Background.hpp"
@@ -119,4 +120,27 @@ TEST_CASE("record attached to a running rig stores the rig's own recorder's samp
   fs::remove_all(run);
   fs::remove(attached);
   fs::remove(log);
+}
+
+TEST_CASE("record refuses an existing file unless --force, and keeps no file when nothing came",
+          "[system][tools]") {
+  test::exportTestDomain();  // a domain of this test's own, where no rig runs
+  const std::string file = test::freshDir("record-force") + ".sqlite";
+  const auto nothing = test::runCommand(test::kFlatsat + " record -o " + file + " --seconds 1");
+  INFO(nothing.output);
+  CHECK(nothing.exit_code == 1);
+  CHECK(nothing.output.find("not kept") != std::string::npos);
+  CHECK_FALSE(fs::exists(file));
+  CHECK_FALSE(fs::exists(file + "-wal"));
+
+  std::ofstream(file) << "an operator's file";
+  const auto refused = test::runCommand(test::kFlatsat + " record -o " + file + " --seconds 1");
+  INFO(refused.output);
+  CHECK(refused.exit_code == 2);
+  CHECK(refused.output.find("--force to replace it") != std::string::npos);
+  CHECK(test::readFile(file) == "an operator's file");
+  const auto forced = test::runCommand(test::kFlatsat + " record -o " + file + " --seconds 1 --force");
+  INFO(forced.output);
+  CHECK(forced.exit_code == 1);  // replaced, and then nothing came
+  CHECK_FALSE(fs::exists(file));
 }
