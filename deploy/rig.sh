@@ -101,7 +101,10 @@ case "$cmd" in
     # suite then stays under 20 minutes on two cores.
     cmake -S "$here" -B "$build" -DFLATSAT_FUZZERS_DIR="$fuzz_build/bin" -DFLATSAT_FUZZ_SECONDS=30 >/dev/null
     start_docker
-    npm ci --prefix "$here/tests/interop" --no-audit --no-fund >&2
+    # The interop tier's published readers (tests/interop/package-lock.json); if the
+    # npm registry cannot be reached, that tier fails and says so, the rest still runs.
+    npm ci --prefix "$here/tests/interop" --no-audit --no-fund >&2 ||
+      echo "rig.sh: npm ci failed in tests/interop; interop.* will fail" >&2
     cd "$build"
     # Every test holds a core of this resource spec, so $jobs run at once, and
     # a paced one holds them all; the one slot more is for the soak (10 min
