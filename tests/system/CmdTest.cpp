@@ -27,7 +27,7 @@ TEST_CASE("cmd sends mode, fault and parameter commands that the components ackn
   const std::string run = test::freshDir("cmd");
   test::Background rig(test::kFlatsat + " run " + std::string(FLATSAT_SCENARIO_DIR) +
                            "/default.yaml -q --no-plots --out " + run +
-                           " --set mode=paced --set duration_orbits=null --set duration_s=15",
+                           " --set mode=paced --set duration_orbits=null --set duration_s=25",
                        run + ".log");
   REQUIRE(test::waitForText(fs::path(run) / "logs" / "dynamics_server.log",
                             "every component ready", 120, rig));
@@ -158,9 +158,17 @@ TEST_CASE("cmd sends mode, fault and parameter commands that the components ackn
   std::size_t lost_sun = 0;
   for (const auto& row : exported(out, "bus_delivery")) lost_sun += row["topic"] == "flatsat/sun_sensor" && row["dropped"] == true;
   CHECK(lost_sun > 20);
-  const auto estimates = exported(out, "attitude_estimate");
-  REQUIRE(estimates.size() > 20);
-  for (std::size_t i = estimates.size() - 20; i < estimates.size(); ++i) CHECK(estimates[i]["sun_used"] == false);
+  // On a loaded machine the acknowledgement may come late in the run, so the
+  // estimates are judged from the acknowledged step on (one step's margin for
+  // a sample already in flight), and there must be enough of them to mean it.
+  const auto drop_step = server_acks["drop"]["header"]["step"].get<std::uint64_t>();
+  std::size_t without_sun = 0;
+  for (const auto& estimate : exported(out, "attitude_estimate")) {
+    if (estimate["header"]["step"].get<std::uint64_t>() <= drop_step + 1) continue;
+    CHECK(estimate["sun_used"] == false);
+    ++without_sun;
+  }
+  CHECK(without_sun >= 10);
   fs::remove_all(run);
   fs::remove(run + ".log");
 }
