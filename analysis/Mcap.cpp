@@ -94,15 +94,10 @@ McapWriter::McapWriter(const std::string& path, const std::string& library, std:
   writeData(record(kHeader, header));
 }
 
-McapWriter::~McapWriter() {
-  if (!closed_) {
-    try {
-      close();
-    } catch (const std::exception&) {
-      // A destructor cannot report: close() explicitly to learn of a failed write.
-    }
-  }
-}
+// Not closed means the writing failed part-way: the file is left without
+// its summary and footer, which every reader refuses, rather than made to
+// look whole.
+McapWriter::~McapWriter() = default;
 
 void McapWriter::writeData(const std::vector<std::uint8_t>& bytes) {
   data_crc_ = crc32(bytes.data(), bytes.size(), data_crc_);
@@ -358,6 +353,11 @@ McapSummary readMcapSummary(const std::string& path) {
   const std::uint64_t footer_at = size - kFooterRecord - kMagic.size();
   if (summary_start == 0 || summary_start > footer_at) {
     throw std::runtime_error(path + ": no summary section (written without an index?)");
+  }
+  if (summary_offset_start != 0 && (summary_offset_start < summary_start || summary_offset_start > footer_at)) {
+    throw std::runtime_error(path + ": the footer's summary offset start " + std::to_string(summary_offset_start) +
+                             " lies outside the summary section [" + std::to_string(summary_start) + ", " +
+                             std::to_string(footer_at) + "]");
   }
   const auto summary = readAt(in, summary_start, footer_at - summary_start, path);
   if (summary_crc != 0) {

@@ -29,6 +29,7 @@ class McapWriter {
  public:
   /// @throws std::runtime_error naming `path` when it cannot be written.
   McapWriter(const std::string& path, const std::string& library, std::size_t chunk_bytes = 1 << 20);
+  /// Without close() the file is left unfinished (no footer), never made to look whole.
   ~McapWriter();
   McapWriter(const McapWriter&) = delete;
   McapWriter& operator=(const McapWriter&) = delete;

@@ -99,7 +99,9 @@ bool isMcap(const std::string& path) {
   return in && std::string(magic, 8) == std::string("\x89MCAP0\r\n", 8);
 }
 
-McapExportCounts exportMcap(const std::string& path, const std::string& out, const std::string& library) {
+namespace {
+
+McapExportCounts writeMcap(const std::string& path, const std::string& out, const std::string& library) {
   const RecordingInfo info = describeRecording(path);
   const bus::Recording recording(path, bus::Recording::Access::kRead);
   // A health sample is stamped with its component's steps done, not a time:
@@ -176,6 +178,23 @@ McapExportCounts exportMcap(const std::string& path, const std::string& out, con
   });
   writer.close();
   return counts;
+}
+
+}  // namespace
+
+McapExportCounts exportMcap(const std::string& path, const std::string& out, const std::string& library) {
+  // Written aside and renamed when whole: an export that fails part-way
+  // leaves no file at OUT, and an earlier OUT stays as it was.
+  const std::string partial = out + ".partial";
+  try {
+    const auto counts = writeMcap(path, partial, library);
+    fs::rename(partial, out);
+    return counts;
+  } catch (...) {
+    std::error_code ignored;
+    fs::remove(partial, ignored);
+    throw;
+  }
 }
 
 RecordingInfo describeMcap(const std::string& path) {

@@ -11,6 +11,7 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "rig/JsonFile.hpp"
 #include "rig/Spawn.hpp"
 
 namespace flatsat::rig {
@@ -23,17 +24,6 @@ namespace {
 std::string campaignFile(const std::string& dir) { return (fs::path(dir) / "campaign.json").string(); }
 std::string statusFile(const Campaign& c, int index) {
   return (fs::path(runDirectory(c, index)) / "run_status.json").string();
-}
-
-/// Written aside and renamed: a reader on another node never sees half a file.
-void writeAtomically(const std::string& file, const Json& content) {
-  const std::string partial = file + ".partial";
-  {
-    std::ofstream out(partial);
-    out << content.dump(2) << "\n";
-    if (!out.flush()) throw std::runtime_error(partial + ": cannot write");
-  }
-  fs::rename(partial, file);
 }
 
 double seconds(const timeval& t) { return static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_usec); }
@@ -52,7 +42,7 @@ T required(const Json& j, const char* key, const std::string& file) {
 }  // namespace
 
 void writeCampaign(const Campaign& c) {
-  writeAtomically(campaignFile(c.dir), Json{{"scenario", c.scenario},
+  writeJsonAtomically(campaignFile(c.dir), Json{{"scenario", c.scenario},
                                             {"name", c.name},
                                             {"runs", c.runs},
                                             {"seed0", c.seed0},
@@ -62,14 +52,7 @@ void writeCampaign(const Campaign& c) {
 
 Campaign readCampaign(const std::string& dir) {
   const std::string file = campaignFile(dir);
-  std::ifstream in(file);
-  if (!in) throw std::runtime_error(file + ": cannot read (not a campaign directory, or not shared with this host)");
-  Json j;
-  try {
-    in >> j;
-  } catch (const nlohmann::json::exception& e) {
-    throw std::runtime_error(file + ": " + e.what());
-  }
+  const Json j = readJsonFile(file, "not a campaign directory, or not shared with this host");
   Campaign c;
   c.dir = fs::absolute(dir).lexically_normal().string();
   c.scenario = required<std::string>(j, "scenario", file);
@@ -120,11 +103,16 @@ std::optional<std::pair<int, RunStatus>> waitForRun(const Campaign& c, std::vect
   end.host = hostName();
   const int index = it->index;
   running.erase(it);
-  fs::create_directories(runDirectory(c, index));
-  writeAtomically(statusFile(c, index), Json{{"exit_code", end.exit_code},
-                                             {"wall_s", end.wall_s},
-                                             {"cpu_s", end.cpu_s},
-                                             {"host", end.host}});
+  // The child is reaped: a full disk must not lose it from the caller's count.
+  try {
+    fs::create_directories(runDirectory(c, index));
+    writeJsonAtomically(statusFile(c, index), Json{{"exit_code", end.exit_code},
+                                                   {"wall_s", end.wall_s},
+                                                   {"cpu_s", end.cpu_s},
+                                                   {"host", end.host}});
+  } catch (const std::exception& e) {
+    end.unrecorded = e.what();
+  }
   return std::make_pair(index, end);
 }
 
@@ -183,7 +171,7 @@ void writeRunnerCost(const Campaign& c, const std::string& runner, double wall_s
   ::getrusage(RUSAGE_SELF, &self);
   ::getrusage(RUSAGE_CHILDREN, &children);
   fs::create_directories(fs::path(c.dir) / "cost");
-  writeAtomically((fs::path(c.dir) / "cost" / (runner + ".json")).string(),
+  writeJsonAtomically((fs::path(c.dir) / "cost" / (runner + ".json")).string(),
                   Json{{"runner", runner},
                        {"host", hostName()},
                        {"cpu_s", cpuSeconds(self) + cpuSeconds(children)},

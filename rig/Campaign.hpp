@@ -53,6 +53,7 @@ struct RunStatus {
   double wall_s = 0;
   double cpu_s = 0;    ///< user + system of the run's process
   std::string host;
+  std::string unrecorded;  ///< why run_status.json could not be written (empty when it was)
 };
 
 /// Removes what an earlier attempt at run `index` left, so it starts afresh.

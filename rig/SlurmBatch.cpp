@@ -48,17 +48,25 @@ std::string shellQuote(const std::string& s) {
   return out + "'";
 }
 
+std::string jobName(const std::string& scenario_name) {
+  std::string name = "flatsat-mc-";
+  for (const char ch : scenario_name) {
+    name += std::isalnum(static_cast<unsigned char>(ch)) != 0 || ch == '-' || ch == '_' ? ch : '_';
+  }
+  return name;
+}
+
 std::string batchScript(const Campaign& c, int submission, std::size_t tasks, const SlurmJobOptions& o) {
   const std::string outputs = (fs::path(c.dir) / "slurm" / ("submission-" + std::to_string(submission))).string();
   std::ostringstream s;
   s << "#!/bin/bash\n"
-    << "# flatsat mc: campaign '" << c.name << "' in " << c.dir << ", submission " << submission << ":\n"
+    << "# flatsat mc: campaign " << jobName(c.name) << " in " << c.dir << ", submission " << submission << ":\n"
     << "# " << tasks << " array tasks of at most " << o.per_task << " runs each (their runs: "
     << fs::path(submissionRecord(c, submission)).filename().string() << ").\n"
     << "# Written by flatsat " << c.version << "; every node needs it at " << c.executable << "\n"
     << "# and this directory at the same path. Resubmit by hand with: sbatch " << submissionScript(c, submission)
     << "\n"
-    << "#SBATCH --job-name=flatsat-mc-" << c.name << "\n"
+    << "#SBATCH --job-name=" << jobName(c.name) << "\n"
     << "#SBATCH --array=0-" << (tasks == 0 ? 0 : tasks - 1) << "\n"
     << "#SBATCH --ntasks=1\n"
     << "#SBATCH --cpus-per-task=1\n"

@@ -27,6 +27,10 @@ std::string submissionScript(const Campaign& campaign, int submission);
 std::string submissionRecord(const Campaign& campaign, int submission);
 std::string taskOutput(const Campaign& campaign, int submission, int task);
 
+/// The job's name: "flatsat-mc-" and the scenario's name with anything but
+/// letters, digits, '-' and '_' made '_' (it goes on an #SBATCH line).
+std::string jobName(const std::string& scenario_name);
+
 /// The batch script of a submission of `tasks` array tasks: one sbatch
 /// --array job whose task i runs `flatsat mc-task DIR --submission n --task i`
 /// (the runs of task i are in the submission's record). Readable, and

@@ -99,7 +99,15 @@ Captured runCaptured(const std::vector<std::string>& args) {
     if (fd.fd >= 0) ::close(fd.fd);
   }
   int status = 0;
-  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  pid_t waited = -1;
+  while ((waited = ::waitpid(pid, &status, 0)) < 0 && errno == EINTR) {
+  }
+  if (waited < 0) {
+    // Reaped elsewhere (a SIGCHLD handler, wait(-1)): how it ended is unknown, not success.
+    result.exit_code = 127;
+    result.err += std::string(result.err.empty() ? "" : "\n") + "cannot learn how " + args.front() +
+                  " ended: " + std::strerror(errno);
+    return result;
   }
   result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
   return result;

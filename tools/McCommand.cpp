@@ -115,6 +115,12 @@ bool runHere(const Campaign& c, const std::vector<int>& indices, int jobs) {
   bool stopping = false;
   const int total = static_cast<int>(indices.size());
   while (!running.empty() || (next < indices.size() && !stopping)) {
+    // Every pass, not only when a wait is interrupted: a Ctrl-C that lands
+    // while a run is being started must not let further runs start.
+    if (bus::shutdownRequested() && !stopping) {
+      stopping = true;
+      for (const auto& run : running) ::kill(run.pid, SIGTERM);
+    }
     while (!stopping && next < indices.size() && static_cast<int>(running.size()) < jobs) {
       const int index = indices[next];
       rig::clearRun(c, index);
@@ -129,16 +135,12 @@ bool runHere(const Campaign& c, const std::vector<int>& indices, int jobs) {
     }
     if (running.empty()) break;
     const auto ended = rig::waitForRun(c, running);
-    if (!ended) {
-      if (bus::shutdownRequested() && !stopping) {
-        // Runs under way are told to stop; no new ones start.
-        stopping = true;
-        for (const auto& run : running) ::kill(run.pid, SIGTERM);
-      }
-      continue;
-    }
+    if (!ended) continue;  // interrupted: the next pass looks at why
     const auto& [index, status] = *ended;
-    if (status.exit_code != 0) {
+    if (!status.unrecorded.empty()) {
+      std::cerr << "error: mc: run " << index << ": its end is not recorded: " << status.unrecorded << "\n";
+    }
+    if (status.exit_code != 0 || !status.unrecorded.empty()) {
       ++failed;
       std::cerr << (::isatty(STDERR_FILENO) ? "\n" : "") << "mc: run " << index << " (seed " << rig::runSeed(c, index)
                 << ") failed with exit status " << status.exit_code << "; log " << rig::runLog(c, index) << "\n";
@@ -228,7 +230,8 @@ int collect(const McOptions& o) {
     return problemsExit({std::string("--collect: ") + e.what()});
   }
   const auto all = submissions(c);
-  if (!all.empty() && jobActive(all.back().job_id)) {
+  // Followed also when squeue did not answer: followJob waits for the controller.
+  if (!all.empty() && jobActive(all.back().job_id).value_or(true)) {
     if (!followJob(c, all.back())) return bus::shutdownRequested() ? 130 : 1;
   }
   return gather(c);
@@ -252,9 +255,16 @@ int resume(const McOptions& o) {
                          ": resume it with that version, so that every run is the same program"});
   }
   const auto all = submissions(c);
-  if (!all.empty() && jobActive(all.back().job_id)) {
-    return problemsExit({"job " + all.back().job_id + " of this campaign is still queued or running: flatsat mc "
-                         "--collect " + o.resume + " follows it"});
+  if (!all.empty()) {
+    const auto active = jobActive(all.back().job_id);
+    if (!active) {
+      return problemsExit({"squeue did not answer about job " + all.back().job_id + " of this campaign: it may "
+                           "still run, so no run of it is cleared; try again when the controller answers"});
+    }
+    if (*active) {
+      return problemsExit({"job " + all.back().job_id + " of this campaign is still queued or running: flatsat mc "
+                           "--collect " + o.resume + " follows it"});
+    }
   }
   const auto missing = rig::unfinishedRuns(c);
   if (missing.empty()) {

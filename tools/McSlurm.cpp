@@ -19,6 +19,7 @@
 
 #include "bus/Bus.hpp"
 #include "bus/Shutdown.hpp"
+#include "rig/JsonFile.hpp"
 #include "rig/Spawn.hpp"
 
 namespace flatsat::tools {
@@ -108,24 +109,6 @@ long maxArraySize() {
   return 0;
 }
 
-nlohmann::json readJson(const std::string& file) {
-  std::ifstream in(file);
-  if (!in) throw std::runtime_error(file + ": cannot read");
-  nlohmann::json j;
-  try {
-    in >> j;
-  } catch (const nlohmann::json::exception& e) {
-    throw std::runtime_error(file + ": " + e.what());
-  }
-  return j;
-}
-
-void writeJson(const std::string& file, const nlohmann::json& j) {
-  const std::string partial = file + ".partial";
-  std::ofstream(partial) << j.dump(2) << "\n";
-  fs::rename(partial, file);
-}
-
 int endedRuns(const Campaign& c, const Submission& s, int& failed) {
   int ended = 0;
   failed = 0;
@@ -156,14 +139,18 @@ std::vector<std::string> slurmProblems(const std::string& dir, std::size_t runs,
     problems.push_back("--time " + o.time_limit +
                        ": not a Slurm time limit (minutes, M:S, H:M:S, D-H, D-H:M, D-H:M:S or UNLIMITED)");
   }
-  if (dir.find_first_of(" \t\n'\"") != std::string::npos) {
-    problems.push_back("--out " + dir + ": a Slurm campaign directory cannot hold blanks or quotes (#SBATCH lines)");
+  // The whole path goes on #SBATCH lines, which sbatch splits at blanks and
+  // whose --output expands '%' patterns (sbatch(1), "filename pattern").
+  const std::string absolute = fs::absolute(dir).lexically_normal().string();
+  if (absolute.find_first_of(" \t\n'\"%\\") != std::string::npos) {
+    problems.push_back("--out " + absolute +
+                       ": a Slurm campaign directory cannot hold blanks, quotes, '%' or '\\' (#SBATCH lines)");
   }
   if (!problems.empty()) return problems;
   const auto remote = remoteNodes(o.partition, problems);
   if (!remote) return problems;
   const std::size_t tasks = rig::splitIntoTasks(std::vector<int>(runs, 0), o.per_task).size();
-  if (const long max = maxArraySize(); max > 0 && static_cast<long>(tasks) > max - 1) {
+  if (const long max = maxArraySize(); max > 0 && static_cast<long>(tasks) > max) {
     problems.push_back(std::to_string(tasks) + " array tasks exceed this cluster's MaxArraySize " +
                        std::to_string(max) + " (indices up to " + std::to_string(max - 1) +
                        "): give a larger --per-task");
@@ -192,30 +179,39 @@ Submission submitRuns(const Campaign& c, const std::vector<int>& runs, const rig
   fs::create_directories(fs::path(rig::taskOutput(c, s.number, 0)).parent_path());
   const std::string script = rig::submissionScript(c, s.number);
   std::ofstream(script) << rig::batchScript(c, s.number, s.tasks.size(), o);
-  writeJson(rig::submissionRecord(c, s.number), {{"job_id", ""}, {"tasks", s.tasks}});
+  rig::writeJsonAtomically(rig::submissionRecord(c, s.number), {{"job_id", ""}, {"tasks", s.tasks}});
   const auto sbatch = runCaptured({"sbatch", "--parsable", script});
   if (sbatch.exit_code != 0) {
-    throw std::runtime_error("sbatch refused " + script + ": " + firstLine(sbatch.err + sbatch.out));
+    // Nothing was submitted: no record of a submission is left to be followed or resumed.
+    const std::string reason = firstLine(sbatch.err + sbatch.out);
+    fs::remove(rig::submissionRecord(c, s.number));
+    fs::remove(script);
+    throw std::runtime_error("sbatch refused the job array: " + reason);
   }
   // --parsable: "jobid" or "jobid;cluster".
   s.job_id = firstLine(sbatch.out).substr(0, firstLine(sbatch.out).find(';'));
-  writeJson(rig::submissionRecord(c, s.number), {{"job_id", s.job_id}, {"tasks", s.tasks}});
+  rig::writeJsonAtomically(rig::submissionRecord(c, s.number), {{"job_id", s.job_id}, {"tasks", s.tasks}});
   return s;
 }
 
 std::vector<Submission> submissions(const Campaign& c) {
   std::vector<Submission> out;
   for (int n = 1; fs::exists(rig::submissionRecord(c, n)); ++n) {
-    const auto j = readJson(rig::submissionRecord(c, n));
+    const auto j = rig::readJsonFile(rig::submissionRecord(c, n));
     out.push_back({n, j.at("job_id").get<std::string>(), j.at("tasks").get<std::vector<std::vector<int>>>()});
   }
   return out;
 }
 
-bool jobActive(const std::string& job_id) {
+std::optional<bool> jobActive(const std::string& job_id) {
   const auto q = runCaptured({"squeue", "-h", "-r", "-j", job_id, "-o", "%i %T"});
+  if (q.exit_code != 0) {
+    // squeue answers an id it no longer holds with this error: the job is over.
+    if ((q.err + q.out).find("Invalid job id") != std::string::npos) return false;
+    return std::nullopt;  // the controller did not answer: the job may still run
+  }
   const auto progress = rig::parseSqueue(q.out);
-  return q.exit_code == 0 && progress.pending + progress.running > 0;
+  return progress.pending + progress.running > 0;
 }
 
 bool followJob(const Campaign& c, const Submission& s) {
@@ -348,9 +344,12 @@ int runArrayTask(const std::string& dir, int submission, int task, const std::st
       }
     }
     if (!ended) continue;
-    failed += ended->second.exit_code != 0 ? 1 : 0;
+    failed += ended->second.exit_code != 0 || !ended->second.unrecorded.empty() ? 1 : 0;
     std::cerr << "mc-task: run " << index << " (seed " << rig::runSeed(c, index) << ") ended with exit status "
               << ended->second.exit_code << " after " << ended->second.wall_s << " s\n";
+    if (!ended->second.unrecorded.empty()) {
+      std::cerr << "error: mc-task: run " << index << ": its end is not recorded: " << ended->second.unrecorded << "\n";
+    }
   }
   rig::writeRunnerCost(c, "submission-" + std::to_string(submission) + "-task-" + std::to_string(task),
                        std::chrono::duration<double>(Clock::now() - start).count());

@@ -32,8 +32,9 @@ Submission submitRuns(const rig::Campaign& campaign, const std::vector<int>& run
 /// The campaign's submissions, oldest first (a local campaign has none).
 std::vector<Submission> submissions(const rig::Campaign& campaign);
 
-/// Whether squeue still lists tasks of the job queued or running.
-bool jobActive(const std::string& job_id);
+/// Whether squeue still lists tasks of the job queued or running; nothing
+/// when the controller did not answer (the job may well be running).
+std::optional<bool> jobActive(const std::string& job_id);
 
 /// Follows the job until none of its tasks is queued or running, with a
 /// progress line on stderr; false when interrupted (the job carries on) or

@@ -99,7 +99,28 @@ TEST_CASE("an MCAP file: magic at both ends, a footer pointing at its summary, c
   std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(damaged.data()),
                                                static_cast<std::streamsize>(damaged.size()));
   CHECK_THROWS_WITH(readMcapSummary(path), Catch::Contains("CRC does not match"));
+  // A footer whose summary offset start points past it (and no CRC to catch
+  // that): refused, not read out of bounds.
+  auto pointing_out = bytes;
+  const std::uint64_t beyond = footer + 100;
+  std::memcpy(&pointing_out[footer + 17], &beyond, 8);
+  std::memset(&pointing_out[footer + 25], 0, 4);
+  std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(pointing_out.data()),
+                                               static_cast<std::streamsize>(pointing_out.size()));
+  CHECK_THROWS_WITH(readMcapSummary(path), Catch::Contains("lies outside the summary section"));
   std::ofstream(path, std::ios::binary) << "not an mcap file at all, but long enough to have a footer";
+  CHECK_THROWS_WITH(readMcapSummary(path), Catch::Contains("not an MCAP file"));
+  fs::remove(path);
+}
+
+TEST_CASE("an MCAP writer never closed leaves a file that no reader takes for whole", "[analysis]") {
+  const std::string path = scratchMcap("unclosed");
+  {
+    McapWriter writer(path, "flatsat test");
+    const auto channel = writer.addChannel(writer.addSchema("pkg::Point", "omgidl", "module pkg {};"), "points", "cdr");
+    const std::uint8_t payload[4] = {0, 1, 0, 0};
+    writer.addMessage(channel, 1, 1, payload, sizeof payload);
+  }  // as when an export throws part-way
   CHECK_THROWS_WITH(readMcapSummary(path), Catch::Contains("not an MCAP file"));
   fs::remove(path);
 }

@@ -67,6 +67,9 @@ TEST_CASE("the batch script is one job array whose tasks run flatsat mc-task on 
   CHECK(plain.find("--time") == std::string::npos);
   CHECK(taskOutput(c, 1, 7) == "/shared/camp/slurm/submission-1/task-7.out");
   CHECK(shellQuote("it's") == "'it'\\''s'");
+  // A scenario's name is free text; the job's name on an #SBATCH line is not.
+  CHECK(jobName("sun pointing: 2%") == "flatsat-mc-sun_pointing__2_");
+  CHECK(jobName("s1_settling-b") == "flatsat-mc-s1_settling-b");
 }
 
 TEST_CASE("squeue's array tasks are counted as pending or running", "[slurm]") {
