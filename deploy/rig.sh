@@ -20,16 +20,16 @@ packages=(
   build-essential cmake pkg-config
   libfastrtps-dev libfastcdr-dev fastddsgen fastdds-tools
   libeigen3-dev catch2 libspdlog-dev libyaml-cpp-dev libcli11-dev nlohmann-json3-dev
-  libsqlite3-dev sqlite3 libssl-dev openssl libzstd-dev
+  libsqlite3-dev sqlite3 libssl-dev openssl libzstd-dev libwebsocketpp-dev libasio-dev
   iproute2 tcpdump procps
   python3 gnuplot-nox
 )
-# Only for `test`: the compose rig's engine, base image and network filter, the
-# browser the live web view is tested in, a single-node Slurm cluster for
+# Only for `test`: the compose rig's engine, base image and network filter, a
+# single-node Slurm cluster for
 # `flatsat mc --slurm` (deploy/slurm/local-cluster.sh; its daemons start only
 # in that test), and Node.js for the interop tier's published readers
 # (tests/interop: npm ci of its package-lock.json).
-test_packages=(docker.io docker-compose debootstrap nftables chromium munge slurmctld slurmd slurm-client)
+test_packages=(docker.io docker-compose debootstrap nftables munge slurmctld slurmd slurm-client)
 # Node.js from Debian unless one is installed already (another vendor's
 # nodejs carries its own npm, and Debian's npm would conflict with it).
 command -v npm >/dev/null 2>&1 || test_packages+=(nodejs npm)

@@ -13,7 +13,9 @@
 
 #include "bus/BusFaults.hpp"
 #include "bus/Endpoints.hpp"
+#include "bus/Shutdown.hpp"
 #include "bus/Stamp.hpp"
+#include "tools/CommandChecks.hpp"
 #include "tools/ToolBus.hpp"
 
 namespace flatsat::tools {
@@ -49,6 +51,10 @@ bool recorderDiscovered(const ToolBus& tool_bus) {
 /// waits: transient-local) and waits for the acknowledgement carrying its id.
 template <class Def>
 int send(const Def& def, typename Def::Type command, const std::string& what, const CmdOptions& o) {
+  if (const auto problem = commandProblem(command); !problem.empty()) {
+    std::cerr << "error: " << what << ": " << problem << "\n";
+    return 2;
+  }
   const auto started = Clock::now();
   ToolBus tool_bus("cmd", o.domain);
   const std::uint64_t id = std::random_device{}() * 0x100000000ULL + std::random_device{}();
@@ -92,10 +98,37 @@ int send(const Def& def, typename Def::Type command, const std::string& what, co
   // announced), or found no recorder; then until every matched reader has it.
   const auto discovery_end = started + std::chrono::duration<double>(kDiscoverySeconds);
   while (!tool_bus.readerDiscovered(std::string(def.name), kRecorder) && Clock::now() < deadline) {
-    if (Clock::now() > discovery_end && !recorderDiscovered(tool_bus)) break;
+    if (Clock::now() > discovery_end && !recorderDiscovered(tool_bus)) {
+      std::cerr << "flatsat cmd: no recorder found on domain " << tool_bus.domain() << " within "
+                << kDiscoverySeconds << " s: the command is not recorded\n";
+      break;
+    }
     if (!sleepUnlessInterrupted(0.05)) break;
   }
-  writer.waitForAcknowledgments(std::chrono::seconds(2));
+  if (Clock::now() >= deadline) {
+    std::cerr << "flatsat cmd: the recorder's reader of " << def.name << " was not matched within --timeout: "
+              << "the command may not be recorded\n";
+  }
+  // Discovery announcing a reader runs ahead of this writer matching it: until
+  // it has matched every reader announced, "all acknowledged" leaves one out
+  // (the recorder's, once in three runs), and the command dies with this process.
+  const auto matching_end = Clock::now() + std::chrono::seconds(2);
+  while (writer.matchedReaders() < tool_bus.readersDiscovered(std::string(def.name)) && Clock::now() < matching_end && Clock::now() < deadline) {
+    if (!sleepUnlessInterrupted(0.01)) break;
+  }
+  // Each matched reader acknowledges once its own participant matched this
+  // writer, which can take a discovery announcement period (3 s) when many
+  // join at once: wait for all of them, up to --timeout, never a fixed 2 s.
+  while (!writer.waitForAcknowledgments(std::chrono::milliseconds(200))) {
+    if (Clock::now() >= deadline || bus::shutdownRequested()) {
+      std::cerr << "flatsat cmd: not every reader of " << def.name << " acknowledged the command within --timeout: "
+                << "the recorder may not hold it\n";
+      break;
+    }
+  }
+  // Acknowledged is received, not yet taken: a reader's unread samples of a
+  // writer that leaves may go with it. The writer stays a moment longer.
+  sleepUnlessInterrupted(1.0);
   const double t_s = static_cast<double>(ack->header().sim_time_ns()) * 1e-9;
   std::printf("%s: %s by %s at step %llu (t = %.1f s): %s\n", what.c_str(),
               ack->accepted() ? "accepted" : "refused", bus::text(ack->header().source()).c_str(),

@@ -22,7 +22,7 @@ struct HealthEntry {
 /// One row per component: state, steps done, lag (steps behind the component furthest
 /// ahead, at their last health), overruns (deadline misses), stale inputs, drops, refusals,
 /// inputs' deadlines missed, age of the last health, alive, late (running, alive, and its
-/// health older than bus::kHealthLate), message (`flatsat health --json`, the web view).
+/// health older than bus::kHealthLate), message (`flatsat health --json`; `flatsat foxglove` turns it into status messages).
 /// Each component's newest health into `entries` (under `mutex`) as it
 /// arrives, its writer marked dead when its liveliness lapses.
 class HealthWatcher {

@@ -136,6 +136,16 @@ bool ToolBus::readerDiscovered(const std::string& topic, const std::string& part
   return false;
 }
 
+int ToolBus::readersDiscovered(const std::string& topic) const {
+  std::lock_guard lock(mutex_);
+  int count = 0;
+  for (const auto& [guid, reader] : readers_) {
+    const auto it = participants_.find(guid.guidPrefix);
+    count += reader.second && reader.first == topic && it != participants_.end() && it->second.alive ? 1 : 0;
+  }
+  return count;
+}
+
 std::map<GuidPrefix, ParticipantInfo> ToolBus::participants() const {
   std::lock_guard lock(mutex_);
   auto out = participants_;

@@ -78,6 +78,8 @@ class ToolBus : private eprosima::fastdds::dds::DomainParticipantListener {
   /// named `participant` (Fast DDS 2.9 cannot list a writer's matched readers:
   /// DataWriter::get_matched_subscriptions returns RETCODE_UNSUPPORTED).
   bool readerDiscovered(const std::string& topic, const std::string& participant) const;
+  /// How many live readers of `topic` discovery announced, in any participant.
+  int readersDiscovered(const std::string& topic) const;
 
  private:
   void on_participant_discovery(eprosima::fastdds::dds::DomainParticipant* participant,

@@ -26,6 +26,7 @@
 #include "tools/EchoCommand.hpp"
 #include "tools/ExportCommand.hpp"
 #include "tools/FieldCommand.hpp"
+#include "tools/FoxgloveCommand.hpp"
 #include "tools/GrantsCommand.hpp"
 #include "rig/Fleet.hpp"
 #include "tools/HealthCommand.hpp"
@@ -48,7 +49,6 @@
 #include "tools/StudyCommand.hpp"
 #include "analysis/Summary.hpp"
 #include "tools/TopicsCommand.hpp"
-#include "tools/WebCommand.hpp"
 #include "flatsat_version.hpp"
 
 namespace fs = std::filesystem;
@@ -734,7 +734,7 @@ int main(int argc, char** argv) {
       tools::addExportCommand(app, tool_exit), tools::addInfoCommand(app, tool_exit),
       tools::addPlotCommand(app, tool_exit),
       tools::addRecordCommand(app, tool_exit), tools::addReplayCommand(app, tool_exit),
-      tools::addCmdCommand(app, tool_exit),    tools::addWebCommand(app, tool_exit)};
+      tools::addCmdCommand(app, tool_exit),    tools::addFoxgloveCommand(app, tool_exit)};
   for (auto* peer : tools::addBenchPeerCommands(app, tool_exit)) tool_cmds.push_back(peer);
   tool_cmds.push_back(tools::addGrantsCommand(app, tool_exit));
 

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <thread>
 
 #include <nlohmann/json.hpp>
 
@@ -32,6 +33,8 @@ TEST_CASE("cmd sends mode, fault and parameter commands that the components ackn
   REQUIRE(test::waitForText(fs::path(run) / "logs" / "dynamics_server.log",
                             "every component ready", 120, rig));
 
+  // A few steps first: the mode's effect is judged against dipoles from before it.
+  std::this_thread::sleep_for(std::chrono::seconds(2));
   // All at once: each waits for its own acknowledgement.
   const std::map<std::string, std::string> commands = {
       {"mode", "mode detumble"},
@@ -87,6 +90,10 @@ TEST_CASE("cmd sends mode, fault and parameter commands that the components ackn
   INFO(exporting.output);
   REQUIRE(exporting.exit_code == 0);
 
+  // A command the recorder did not hold says so in its sender's output.
+  std::string senders;
+  for (const auto& [name, result] : results) senders += name + ": " + result.second + "\n";
+  INFO(senders);
   CHECK(exported(out, "unloading_mode_cmd").size() == 1);
   CHECK(exported(out, "fault_cmd").size() == 4);
   CHECK(exported(out, "param_cmd").size() == 2);

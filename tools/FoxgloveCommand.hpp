@@ -1,0 +1,13 @@
+// SPDX-License-Identifier: Apache-2.0
+#pragma once
+#include <CLI/CLI.hpp>
+
+namespace flatsat::tools {
+
+/// `flatsat foxglove`: a running rig served to Foxglove (or Lichtblick) over
+/// the Foxglove WebSocket protocol: every live registry topic a channel with
+/// its OMG IDL schema and CDR bytes, health changes as status messages, and
+/// the operator command topics open to clients that publish.
+CLI::App* addFoxgloveCommand(CLI::App& app, int& exit_code);
+
+}  // namespace flatsat::tools
