@@ -38,6 +38,18 @@ T field(const Json& object, const char* key, const std::string& where) {
   return value.get<T>();
 }
 
+/// The array `key` of ids, each an integer 0..4294967295.
+std::vector<std::uint32_t> ids(const Json& object, const char* key, const std::string& where) {
+  std::vector<std::uint32_t> out;
+  for (const auto& id : field<Json::array_t>(object, key, where)) {
+    if (!id.is_number_unsigned() || id.get<std::uint64_t>() > 0xFFFFFFFFull) {
+      throw ProtocolError(where + ": '" + key + "' must hold integers 0..4294967295");
+    }
+    out.push_back(id.get<std::uint32_t>());
+  }
+  return out;
+}
+
 }  // namespace
 
 std::string serverInfo(const std::string& name, const std::vector<std::string>& capabilities,
@@ -102,12 +114,7 @@ ClientRequest parseText(const std::string& text) {
     return s;
   }
   if (op == "unsubscribe") {
-    Unsubscribe u;
-    for (const auto& id : field<Json::array_t>(j, "subscriptionIds", where)) {
-      if (!id.is_number_unsigned()) throw ProtocolError(where + ": 'subscriptionIds' must hold integers");
-      u.subscription_ids.push_back(id.get<std::uint32_t>());
-    }
-    return u;
+    return Unsubscribe{ids(j, "subscriptionIds", where)};
   }
   if (op == "advertise") {
     ClientAdvertise a;
@@ -120,12 +127,7 @@ ClientRequest parseText(const std::string& text) {
     return a;
   }
   if (op == "unadvertise") {
-    ClientUnadvertise u;
-    for (const auto& id : field<Json::array_t>(j, "channelIds", where)) {
-      if (!id.is_number_unsigned()) throw ProtocolError(where + ": 'channelIds' must hold integers");
-      u.channel_ids.push_back(id.get<std::uint32_t>());
-    }
-    return u;
+    return ClientUnadvertise{ids(j, "channelIds", where)};
   }
   throw ProtocolError("op '" + op + "' is not supported by this server (it offers subscribe, unsubscribe, and "
                       "advertise, unadvertise and message data for the operator command topics)");

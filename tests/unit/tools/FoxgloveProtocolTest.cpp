@@ -69,6 +69,10 @@ TEST_CASE("a malformed client message is refused with what is wrong with it", "[
                     Catch::Contains("'channelId' must be an integer"));
   CHECK_THROWS_WITH(parseText(R"({"op":"advertise","channels":[{"id":1,"topic":3,"encoding":"cdr","schemaName":"x"}]})"),
                     Catch::Contains("'topic' must be a string"));
+  CHECK_THROWS_WITH(parseText(R"({"op":"unsubscribe","subscriptionIds":[1,"2"]})"),
+                    Catch::Contains("'subscriptionIds' must hold integers"));
+  CHECK_THROWS_WITH(parseText(R"({"op":"unadvertise","channelIds":[4294967296]})"),
+                    Catch::Contains("'channelIds' must hold integers"));
   CHECK_THROWS_WITH(parseBinary(""), Catch::Contains("empty"));
   CHECK_THROWS_WITH(parseBinary(std::string("\x02\x00", 2)), Catch::Contains("binary opcode 2"));
   CHECK_THROWS_WITH(parseBinary(std::string("\x01\x00\x00", 3)), Catch::Contains("shorter than its 5-byte head"));
