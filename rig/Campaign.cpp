@@ -26,8 +26,6 @@ std::string statusFile(const Campaign& c, int index) {
   return (fs::path(runDirectory(c, index)) / "run_status.json").string();
 }
 
-double seconds(const timeval& t) { return static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_usec); }
-double cpuSeconds(const rusage& u) { return seconds(u.ru_utime) + seconds(u.ru_stime); }
 
 template <typename T>
 T required(const Json& j, const char* key, const std::string& file) {

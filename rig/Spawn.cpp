@@ -113,6 +113,11 @@ Captured runCaptured(const std::vector<std::string>& args) {
   return result;
 }
 
+double cpuSeconds(const rusage& usage) {
+  const auto seconds = [](const timeval& t) { return static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_usec); };
+  return seconds(usage.ru_utime) + seconds(usage.ru_stime);
+}
+
 bool onPath(const std::string& program) {
   const char* path = std::getenv("PATH");
   if (path == nullptr) return false;

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 #pragma once
+#include <sys/resource.h>
 #include <sys/types.h>
 
 #include <string>
@@ -22,6 +23,9 @@ Captured runCaptured(const std::vector<std::string>& args);
 
 /// Whether `program` is an executable on PATH.
 bool onPath(const std::string& program);
+
+/// [s] User plus system CPU time of a getrusage() or wait4() report.
+double cpuSeconds(const rusage& usage);
 
 /// A waitpid status in words: "exit code N", "killed by signal N".
 std::string describeExit(int status);

@@ -13,6 +13,7 @@
 #include "analysis/McapSchemas.hpp"
 #include "bus/Serialization.hpp"
 #include "bus/Stamp.hpp"
+#include "rig/Spawn.hpp"
 #include "tools/CommandChecks.hpp"
 #include "tools/HealthTable.hpp"
 #include "tools/ReportErrors.hpp"
@@ -55,8 +56,7 @@ std::string publishableTopics() {
 double ownCpuSeconds() {
   rusage usage{};
   ::getrusage(RUSAGE_SELF, &usage);
-  const auto seconds = [](const timeval& t) { return static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_usec); };
-  return seconds(usage.ru_utime) + seconds(usage.ru_stime);
+  return rig::cpuSeconds(usage);
 }
 
 class Bridge {
