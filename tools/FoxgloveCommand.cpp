@@ -136,6 +136,8 @@ class Bridge {
     /// nobody watches costs the rig nothing per sample.
     std::function<std::shared_ptr<void>()> make_reader;
     std::shared_ptr<void> reader;
+    /// Checks and writes a client's command on this topic; empty: clients may not publish here.
+    std::function<void(ClientId, const std::vector<std::uint8_t>&)> publish;
   };
 
   template <class Def>
@@ -158,7 +160,7 @@ class Bridge {
       };
       topic_of_channel_[id] = std::string(def.name);
       if constexpr (kClientPublishable<Def>) {
-        publishers_[std::string(def.name)] = [this, &def](ClientId client, const std::vector<std::uint8_t>& data) {
+        channel.publish = [this, &def](ClientId client, const std::vector<std::uint8_t>& data) {
           publish(def, client, data);
         };
       }
@@ -282,7 +284,8 @@ class Bridge {
     std::lock_guard lock(mutex_);
     for (const auto& channel : a.channels) {
       const std::string which = "advertise: client channel " + std::to_string(channel.id) + " ('" + channel.topic + "')";
-      if (publishers_.count(channel.topic) == 0) {
+      const auto target = channels_.find(channel.topic);
+      if (target == channels_.end() || !target->second.publish) {
         throw fg::ProtocolError(which + ": clients publish only the operator commands: " + publishableTopics());
       }
       if (channel.encoding != "cdr") throw fg::ProtocolError(which + ": encoding '" + channel.encoding + "'; this bridge takes cdr");
@@ -307,7 +310,7 @@ class Bridge {
         throw fg::ProtocolError("message data on client channel " + std::to_string(m.channel_id) +
                                 ", which this client did not advertise");
       }
-      publisher = publishers_.at(channel->second);
+      publisher = channels_.at(channel->second).publish;
     }
     publisher(client, m.data);
   }
@@ -368,7 +371,6 @@ class Bridge {
   std::map<std::string, ChannelState> channels_;
   std::map<std::uint32_t, std::string> topic_of_channel_;
   bool closing_ = false;
-  std::map<std::string, std::function<void(ClientId, const std::vector<std::uint8_t>&)>> publishers_;
   std::map<std::string, std::shared_ptr<void>> writers_;
   std::set<ClientId> clients_;
   fg::Subscriptions<ClientId> subscriptions_;
