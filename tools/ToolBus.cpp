@@ -180,13 +180,13 @@ std::string registryTopicNames() {
   return names;
 }
 
-bool sleepUnlessInterrupted(double seconds) {
+bool sleepUnlessInterrupted(double seconds, double check_every_s) {
   const auto end = Clock::now() + std::chrono::duration_cast<Clock::duration>(
                                       std::chrono::duration<double>(seconds));
+  const auto slice = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(check_every_s));
   while (Clock::now() < end) {
     if (bus::shutdownRequested()) return false;
-    std::this_thread::sleep_for(
-        std::min<Clock::duration>(std::chrono::milliseconds(50), end - Clock::now()));
+    std::this_thread::sleep_for(std::min<Clock::duration>(slice, end - Clock::now()));
   }
   return !bus::shutdownRequested();
 }
@@ -204,6 +204,38 @@ void flattenJson(const nlohmann::ordered_json& value, const std::string& path,
   } else {
     out.emplace_back(path, &value);
   }
+}
+
+const nlohmann::ordered_json* fieldOf(const nlohmann::ordered_json& sample, std::string_view path) {
+  const nlohmann::ordered_json* at = &sample;
+  std::size_t i = 0;
+  while (i < path.size()) {
+    if (path[i] == '[') {
+      const auto close = path.find(']', i);
+      if (close == std::string_view::npos || close == i + 1 || !at->is_array()) return nullptr;
+      std::size_t index = 0;
+      for (const char c : path.substr(i + 1, close - i - 1)) {
+        if (c < '0' || c > '9') return nullptr;
+        index = index * 10 + static_cast<std::size_t>(c - '0');
+      }
+      if (index >= at->size()) return nullptr;
+      at = &(*at)[index];
+      i = close + 1;
+      continue;
+    }
+    if (path[i] == '.') {
+      if (i == 0) return nullptr;
+      ++i;
+    }
+    const auto end = path.find_first_of(".[", i);
+    const auto key = path.substr(i, end == std::string_view::npos ? std::string_view::npos : end - i);
+    if (key.empty() || !at->is_object()) return nullptr;
+    const auto it = at->find(std::string(key));
+    if (it == at->end()) return nullptr;
+    at = &*it;
+    i = end == std::string_view::npos ? path.size() : end;
+  }
+  return at;
 }
 
 }  // namespace flatsat::tools

@@ -136,12 +136,17 @@ int runForTopic(std::string_view name, Run&& run) {
   }
 }
 
-/// Waits `seconds` of wall time, returning early (false) on SIGINT/SIGTERM.
-bool sleepUnlessInterrupted(double seconds);
+/// Waits `seconds` of wall time, returning early (false) on SIGINT/SIGTERM,
+/// which it looks for every `check_every_s`.
+bool sleepUnlessInterrupted(double seconds, double check_every_s = 0.05);
 
 /// Flattens a JSON sample into (path, leaf) pairs in order: objects by
 /// ".key", arrays by "[i]"; the paths are the generated leafFields<T>().
 void flattenJson(const nlohmann::ordered_json& value, const std::string& path,
                  std::vector<std::pair<std::string, const nlohmann::ordered_json*>>& out);
+
+/// The part of a JSON sample at `path`, in flattenJson's spelling
+/// ("header.step", "w_body_rad_s", "w_body_rad_s[2]"); nullptr when it has none.
+const nlohmann::ordered_json* fieldOf(const nlohmann::ordered_json& sample, std::string_view path);
 
 }  // namespace flatsat::tools

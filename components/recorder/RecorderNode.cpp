@@ -14,6 +14,12 @@
 
 namespace flatsat::recorder {
 
+namespace {
+/// [s] How long a health, command or liveliness change may wait for the next
+/// step's batch to the live feed's watchers.
+constexpr auto kFeedQuiet = std::chrono::milliseconds(250);
+}  // namespace
+
 std::vector<std::string> RecorderParams::validate() const {
   std::vector<std::string> problems;
   if (path.empty()) problems.push_back("path: no recording file (give --out)");
@@ -30,6 +36,14 @@ RecorderNode::RecorderNode(bus::Bus& bus, bus::NodeOptions options, const Record
     : Component(bus, std::move(options)),
       params_(params),
       recording_(params.path, bus::Recording::Access::kCreate) {
+  // A composed rig holds no socket (docs/architecture.md, "Composed mode"), and has no bus to watch.
+  if (bus.localHub() == nullptr) {
+    try {
+      live_feed_ = std::make_unique<bus::LiveFeedServer>(bus::liveFeedName(bus.domainId()));
+    } catch (const bus::LiveFeedError& e) {
+      spdlog::info("{}: no live feed ({}); watchers read the bus themselves", name(), e.what());
+    }
+  }
   bus::forEachTopic([this](const auto& def) {
     // Stepped data whose producer runs in this rig; the protocol topics
     // (grant, done) are bookkeeping, not data.
@@ -37,7 +51,18 @@ RecorderNode::RecorderNode(bus::Bus& bus, bus::NodeOptions options, const Record
       record(def);
     }
   });
-  health_ = recordAsItComes(bus, bus::topics::kHealth);
+  health_ = std::make_unique<bus::ReaderOf<bus::topics::kHealth>>(
+      bus, bus::topics::kHealth,
+      [this](const msg::Health& health) {
+        const auto payload = bus::serialize<std::remove_cvref_t<decltype(bus::topics::kHealth)>>(health);
+        store(std::string(bus::topics::kHealth.name), health.header(), payload);
+        feed(std::string(bus::topics::kHealth.name), health.header(), payload, true);
+      },
+      [this](const std::string& source, bool alive) {
+        if (!live_feed_ || !live_feed_->watched()) return;
+        live_feed_->liveliness(source, alive);
+        live_feed_->flushUnlessRecent(kFeedQuiet);
+      });
   fault_commands_ = recordAsItComes(bus, bus::topics::kFaultCmd);
   fault_events_ = recordAsItComes(bus, bus::topics::kFaultEvent);
   mode_commands_ = recordAsItComes(bus, bus::topics::kUnloadingModeCmd);
@@ -47,11 +72,14 @@ RecorderNode::RecorderNode(bus::Bus& bus, bus::NodeOptions options, const Record
   // recorder's own shutdown, and a recording must not depend on who won.
   observeGrants([this](const msg::StepGrant& grant) {
     // A grant sent again after a stall (bus::kResendAfter) is recorded once.
-    if (grant.stop() || !recorded(grant.header().step())) return;
+    if (grant.stop()) return;
     if (last_grant_ && grant.header().step() <= *last_grant_) return;
     last_grant_ = grant.header().step();
-    store(std::string(bus::topics::kStepGrant.name), grant.header(),
-          bus::serialize<std::remove_cvref_t<decltype(bus::topics::kStepGrant)>>(grant));
+    const bool kept = recorded(grant.header().step());
+    if (!kept && !(live_feed_ && live_feed_->watched())) return;
+    const auto payload = bus::serialize<std::remove_cvref_t<decltype(bus::topics::kStepGrant)>>(grant);
+    if (kept) store(std::string(bus::topics::kStepGrant.name), grant.header(), payload);
+    feed(std::string(bus::topics::kStepGrant.name), grant.header(), payload, false);
   });
   for (const auto& [key, value] : params.meta) recording_.setMeta(key, value);
   if (const auto after = recording_.meta(bus::meta::kResumeAfterStep); !after.empty()) {
@@ -78,8 +106,17 @@ template <class Def>
 std::unique_ptr<bus::Reader<Def>> RecorderNode::recordAsItComes(bus::Bus& bus, const Def& def) {
   return std::make_unique<bus::Reader<Def>>(
       bus, def, [this, topic = std::string(def.name)](const typename Def::Type& sample) {
-        store(topic, sample.header(), bus::serialize<Def>(sample));
+        const auto payload = bus::serialize<Def>(sample);
+        store(topic, sample.header(), payload);
+        feed(topic, sample.header(), payload, true);
       });
+}
+
+void RecorderNode::feed(const std::string& topic, const msg::SampleHeader& header,
+                        const std::vector<std::uint8_t>& payload, bool now) {
+  if (!live_feed_ || !live_feed_->watched()) return;
+  live_feed_->sample(topic, header.sim_time_ns(), payload.data(), payload.size());
+  if (now) live_feed_->flushUnlessRecent(kFeedQuiet);
 }
 
 void RecorderNode::store(const std::string& topic, const msg::SampleHeader& header,
@@ -95,10 +132,12 @@ void RecorderNode::record(const Def& def) {
   // Samples are stored as they arrive; in lockstep the input's wait for step
   // k then guarantees they are all in before StepDone(k).
   addTap(def, [this, topic = std::string(def.name)](const typename Def::Type& sample) {
-    if (!recorded(sample.header().step())) return;
+    const bool kept = recorded(sample.header().step());
+    if (!kept && !(live_feed_ && live_feed_->watched())) return;
     thread_local std::vector<std::uint8_t> payload;  // its capacity stays: no allocation per sample
     bus::serializeInto<Def>(sample, payload);
-    store(topic, sample.header(), payload);
+    if (kept) store(topic, sample.header(), payload);
+    feed(topic, sample.header(), payload, false);  // every step, decimated or not; sent with the step
   });
   producer_dividers_[std::string(def.name)] = dividerOf(std::string(def.producer));
 }
@@ -128,6 +167,12 @@ RecorderNode::~RecorderNode() {
   } catch (const std::exception& e) {
     spdlog::error("{}: the intruders' fault events were not kept: {}", name(), e.what());
   }
+  if (live_feed_ && live_feed_->watched()) {
+    live_feed_->end();
+    if (const auto dropped = live_feed_->framesDropped(); dropped > 0) {
+      spdlog::warn("{}: the live feed's watchers missed {} frames (they did not keep up)", name(), dropped);
+    }
+  }
 }
 
 void RecorderNode::storeIntruders() {
@@ -148,6 +193,7 @@ void RecorderNode::storeIntruders() {
 }
 
 void RecorderNode::step(const bus::StepContext& ctx) {
+  if (live_feed_) live_feed_->flush();  // the step's samples, one send per watcher
   storeIntruders();
   if (recorded(ctx.step)) recordDeliveries(ctx);
   if ((ctx.step + 1) % params_.commit_every_steps != 0) return;

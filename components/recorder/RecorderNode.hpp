@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "bus/Component.hpp"
+#include "bus/LiveFeed.hpp"
 #include "bus/NodeMain.hpp"
 #include "bus/Recording.hpp"
 
@@ -53,6 +54,12 @@ class RecorderNode final : public bus::Component {
   std::unique_ptr<bus::Reader<Def>> recordAsItComes(bus::Bus& bus, const Def& def);
   void store(const std::string& topic, const msg::SampleHeader& header,
              const std::vector<std::uint8_t>& payload);
+  /// A sample to the live feed's watchers, if any, sent with the step; `now`:
+  /// the rare topics, sent alone when no step sent anything for a while (a
+  /// stalled lockstep rig).
+  void feed(const std::string& topic, const msg::SampleHeader& header, const std::vector<std::uint8_t>& payload,
+            bool now);
+
   /// Resuming (bus::meta::kResumeAfterStep): a sample of a step the recording
   /// holds already is compared with it (counted), not stored. The caller holds recording_mutex_.
   bool recordedAlready(const std::string& topic, const msg::SampleHeader& header,
@@ -66,6 +73,7 @@ class RecorderNode final : public bus::Component {
   RecorderParams params_;
   std::mutex recording_mutex_;  // the step thread and the health callback both insert
   bus::Recording recording_;
+  std::unique_ptr<bus::LiveFeedServer> live_feed_;  // before the readers that feed it: it outlives them
   std::unique_ptr<bus::ReaderOf<bus::topics::kHealth>> health_;
   std::unique_ptr<bus::ReaderOf<bus::topics::kFaultCmd>> fault_commands_;
   std::unique_ptr<bus::ReaderOf<bus::topics::kFaultEvent>> fault_events_;

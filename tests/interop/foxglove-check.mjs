@@ -2,8 +2,9 @@
 // `flatsat foxglove` on a live paced rig, as Foxglove sees it: the published
 // client (@foxglove/ws-protocol over ws) and OMG IDL CDR reader
 // (@foxglove/omgidl-parser, @foxglove/omgidl-serialization), none written here.
-//   node foxglove-check.mjs WS_URL RUN_DIR
-// 1. serverInfo and advertisements: every channel omgidl + cdr; subscribe to all.
+//   node foxglove-check.mjs WS_URL RUN_DIR BRIDGE_PID
+// 1. serverInfo and advertisements: every channel omgidl + cdr; subscribe to all;
+//    then the CPU the bridge and the rig use over 10 s of that (cpu-window.sh).
 // 2. at least 50 samples each of flatsat/gyro and flatsat/truth decoded with
 //    the advertised schema: every number finite, steps rising, timestamps the
 //    samples' simulated time.
@@ -14,13 +15,14 @@
 //    information again once it goes on; the run's end is information
 //    (stopped), never an error.
 import { execSync } from "node:child_process";
+import { fileURLToPath } from "node:url";
 import WebSocket from "ws";
 import wsProtocol from "@foxglove/ws-protocol";
 import { parseIDL } from "@foxglove/omgidl-parser";
 import { MessageReader, MessageWriter } from "@foxglove/omgidl-serialization";
 
 const { FoxgloveClient } = wsProtocol;
-const [url, runDir] = process.argv.slice(2);
+const [url, runDir, bridgePid] = process.argv.slice(2);
 const failures = [];
 function check(ok, what) {
   if (!ok) failures.push(what);
@@ -71,6 +73,10 @@ check(serverInfo?.capabilities.includes("clientPublish"), "serverInfo offers cli
 check(serverInfo?.supportedEncodings?.includes("cdr"), "serverInfo: cdr");
 await until(() => ["flatsat/gyro", "flatsat/truth"].every((t) => (received.get(t)?.length ?? 0) >= 50), 60,
             "50 samples each of flatsat/gyro and flatsat/truth");
+
+// What watching everything costs: the bridge's CPU beside the rig's, in steady state.
+const cpuWindow = fileURLToPath(new URL("./cpu-window.sh", import.meta.url));
+console.log(`watching every channel: ${execSync(`bash ${cpuWindow} ${runDir} 10 ${bridgePid}`).toString().trim()}`);
 
 // 2. Decoded samples: finite numbers, steps rising, stamped with simulated time.
 function numbers(value, out = []) {

@@ -2,12 +2,14 @@
 # SPDX-License-Identifier: Apache-2.0
 # The Foxglove WebSocket interop check: a paced default rig, `flatsat
 # foxglove` beside it, and foxglove-check.mjs connecting with the published
-# client. Prints the bridge's CPU beside the rig's (the bridge with one
-# client subscribed to every topic; docs/recordings.md).
-#   tests/interop/foxglove-check.sh BIN_DIR SCENARIO_DIR
+# client. Prints what the bridge with one client subscribed to every topic
+# adds to the rig's CPU, in steady state (docs/recordings.md).
+#   tests/interop/foxglove-check.sh BIN_DIR SCENARIO_DIR [--bus]
+# --bus: the bridge reads every topic from the bus, not from the recorder's feed.
 set -euo pipefail
 bin=$1
 scenarios=$2
+bridge_args=("${@:3}")
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 work=$(mktemp -d /tmp/flatsat-interop-foxglove.XXXXXX)
 rig= bridge=
@@ -39,26 +41,35 @@ waitFor() {  # FILE TEXT SECONDS
   return 1
 }
 
-( TIMEFORMAT='rig_cpu_s %U %S'
-  time "$bin/flatsat" run "$scenarios/default.yaml" -q --no-plots --out "$work/run" \
-    --set mode=paced --set duration_orbits=null --set duration_s=45 >"$work/run.log" 2>&1 || true
-) 2>"$work/rig-cpu.txt" &
+"$bin/flatsat" run "$scenarios/default.yaml" -q --no-plots --out "$work/run" \
+  --set mode=paced --set duration_orbits=null --set duration_s=65 >"$work/run.log" 2>&1 &
 rig=$!
 waitFor "$work/run/logs/dynamics_server.log" "every component ready" 120
-"$bin/flatsat" foxglove --port 0 >"$work/bridge.out" 2>"$work/bridge.err" &
+sleep 2
+alone=$(bash "$here/cpu-window.sh" "$work/run" 10)
+echo "the rig alone: $alone"
+"$bin/flatsat" foxglove "${bridge_args[@]}" --port 0 >"$work/bridge.out" 2>"$work/bridge.err" &
 bridge=$!
 waitFor "$work/bridge.out" "ws://" 30
 url=$(grep -o 'ws://[^ ]*' "$work/bridge.out")
 status=0
-node "$here/foxglove-check.mjs" "$url" "$work/run" || status=$?
+want="the recorder's live feed"
+[ ${#bridge_args[@]} -gt 0 ] && want="from the bus"
+grep -q "$want" "$work/bridge.out" || { echo "foxglove-check: the bridge does not read $want: $(cat "$work/bridge.out")" >&2; status=1; }
+node "$here/foxglove-check.mjs" "$url" "$work/run" "$bridge" | tee "$work/check.log" || status=$?
 wait "$rig" || true
 rig=
 kill -INT "$bridge"
 wait "$bridge" || true
 bridge=
 cat "$work/bridge.err" >&2
-rig_cpu=$(awk '/rig_cpu_s/ {print $2 + $3}' "$work/rig-cpu.txt")
-bridge_cpu=$(grep -o 'cpu_s [0-9.e+-]*' "$work/bridge.err" | awk '{print $2}')
-awk -v r="$rig_cpu" -v b="$bridge_cpu" 'BEGIN {
-  printf "foxglove bridge: rig_cpu_s=%.2f bridge_cpu_s=%.2f bridge_fraction_of_rig=%.1f%%\n", r, b, 100 * b / r }'
+watched=$(grep -o 'watching every channel: .*' "$work/check.log" || true)
+value() { grep -o "$1=[0-9.]*" <<<"$2" | cut -d= -f2; }
+if [ -n "$watched" ]; then
+  awk -v rig="$(value rig_cpu_ms_per_s "$alone")" -v rec0="$(value recorder_cpu_ms_per_s "$alone")" \
+      -v rec1="$(value recorder_cpu_ms_per_s "$watched")" -v from="${bridge_args[*]:+ ${bridge_args[*]}}" -v bridge="$(value watcher_cpu_ms_per_s "$watched")" 'BEGIN {
+    feed = rec1 > rec0 ? rec1 - rec0 : 0  # what feeding the bridge cost the recorder (within noise)
+    printf "foxglove bridge%s: rig_cpu_ms_per_s=%.2f bridge_cpu_ms_per_s=%.3f recorder_cpu_ms_per_s=%.3f->%.3f bridge_fraction_of_rig=%.1f%% added_fraction_of_rig=%.1f%%\n",
+           from, rig, bridge, rec0, rec1, 100 * bridge / rig, 100 * (bridge + feed) / rig }'
+fi
 exit "$status"

@@ -48,6 +48,7 @@ struct WebSocketServer::Impl {
   std::mutex queue_mutex;
   std::vector<Outgoing> queue;
   bool flush_posted = false;
+  int batches = 0;  // open batches: what is queued waits for the last to end
   std::unique_ptr<asio::steady_timer> flush_timer;
 
   bool send(ClientId client, std::string payload, websocketpp::frame::opcode::value opcode) {
@@ -57,11 +58,18 @@ struct WebSocketServer::Impl {
     }
     std::lock_guard lock(queue_mutex);
     queue.push_back({client, std::move(payload), opcode});
-    if (!flush_posted) {
+    if (!flush_posted && batches == 0) {
       flush_posted = true;
       asio::post(server.get_io_service(), [this] { scheduleFlush(); });
     }
     return true;
+  }
+
+  void endBatch() {
+    std::lock_guard lock(queue_mutex);
+    if (--batches > 0 || flush_posted || queue.empty()) return;
+    flush_posted = true;
+    asio::post(server.get_io_service(), [this] { flush(); });
   }
 
   /// On the server's thread: the queue is sent a few milliseconds after its
@@ -192,6 +200,11 @@ bool WebSocketServer::sendText(ClientId client, std::string text) {
 bool WebSocketServer::sendBinary(ClientId client, std::string bytes) {
   return impl_->send(client, std::move(bytes), websocketpp::frame::opcode::binary);
 }
+void WebSocketServer::beginBatch() {
+  std::lock_guard lock(impl_->queue_mutex);
+  ++impl_->batches;
+}
+void WebSocketServer::endBatch() { impl_->endBatch(); }
 std::uint64_t WebSocketServer::backlogDrops() const { return impl_->drops.load(std::memory_order_relaxed); }
 
 }  // namespace flatsat::foxglove

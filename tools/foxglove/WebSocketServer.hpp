@@ -39,6 +39,11 @@ class WebSocketServer {
   /// the client has gone.
   bool sendText(ClientId client, std::string text);
   bool sendBinary(ClientId client, std::string bytes);
+  /// Between the two, queued messages wait for endBatch(), which hands them to
+  /// the server's thread at once: a burst known to be whole (a step's batch
+  /// from the recorder's feed) needs no gathering delay. From one thread.
+  void beginBatch();
+  void endBatch();
   /// Messages missed for a full backlog, over all clients.
   std::uint64_t backlogDrops() const;
 
