@@ -21,6 +21,7 @@ struct HzOptions {
   double seconds = 5.0;
   std::string source;  ///< only samples whose header.source is this; empty: all
   bool json = false;
+  std::size_t window = 10000;  ///< the rolling readout's last N samples
   int domain = -1;
 };
 
@@ -66,6 +67,7 @@ int hz(const Def& def, const HzOptions& o) {
   // The window opens with the first sample, once discovery matched the
   // producer (kDiscoverySeconds), so it always spans `seconds` of stream.
   const auto start = Clock::now();
+  auto next_readout = Clock::time_point::max();
   while (sleepUnlessInterrupted(0.02)) {
     std::lock_guard lock(mutex);
     const auto now = Clock::now();
@@ -73,6 +75,17 @@ int hz(const Def& def, const HzOptions& o) {
                          : now - arrivals.front() >= std::chrono::duration<double>(o.seconds)) {
       break;
     }
+    if (o.json || arrivals.empty()) continue;
+    // As `ros2 topic hz`: a readout every second over the last `window` samples.
+    if (next_readout == Clock::time_point::max()) next_readout = arrivals.front() + std::chrono::seconds(1);
+    if (now < next_readout) continue;
+    next_readout += std::chrono::seconds(1);
+    const auto from = arrivals.size() > o.window ? arrivals.end() - static_cast<std::ptrdiff_t>(o.window) : arrivals.begin();
+    const auto r = statistics({from, arrivals.end()});
+    if (r.samples < 2) continue;
+    std::printf("%s: rate %.3f Hz  min %.6f s  max %.6f s  std %.6f s  window %zu\n", std::string(def.name).c_str(),
+                r.rate_hz, r.min_s, r.max_s, r.std_s, r.samples);
+    std::fflush(stdout);
   }
   IntervalStats s;
   {
@@ -113,11 +126,14 @@ CLI::App* addHzCommand(CLI::App& app, int& exit_code) {
       ->check(CLI::PositiveNumber);
   cmd->add_option("--source", options->source,
                   "count only samples whose header.source is this component");
-  cmd->add_flag("--json", options->json, "print JSON");
+  cmd->add_flag("--json", options->json, "print JSON, once, at the end");
+  cmd->add_option("-w,--window", options->window, "the rolling readout's window: the last N samples (default 10000)")
+      ->check(CLI::PositiveNumber);
   addDomainOption(*cmd, options->domain);
   cmd->footer(
-      "Rate = 1 / mean interval between arrivals at this tool; min, max and std are\n"
-      "of the interval. The window opens at the first sample (discovery takes up to\n"
+      "Prints a readout every second over the last --window samples, and at the end the\n"
+      "whole window's. Rate = 1 / mean interval between arrivals at this tool; min, max and\n"
+      "std are of the interval. The window opens at the first sample (discovery takes up to\n"
       "4 s). A lockstep rig runs as fast as its slowest component, a paced one at the\n"
       "scenario's step rate.");
   cmd->callback([options, &exit_code] {

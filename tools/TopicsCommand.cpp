@@ -24,6 +24,7 @@ struct TopicsOptions {
   int domain = -1;
   bool verbose = false;
   bool json = false;
+  bool all = false;  ///< every registry topic, produced or not
 };
 
 /// Samples of one writer written after the reader subscribed.
@@ -158,6 +159,7 @@ int runTopics(const TopicsOptions& o) {
   }
   auto& topics = out["topics"] = nlohmann::ordered_json::array();
   for (const auto& [topic, entry] : stats) {
+    if (!o.all && producers[topic].empty()) continue;  // nobody writes it on this domain
     nlohmann::ordered_json t{{"name", topic},
                              {"type", entry.type},
                              {"in_registry", entry.in_registry},
@@ -214,7 +216,7 @@ int runTopics(const TopicsOptions& o) {
 CLI::App* addTopicsCommand(CLI::App& app, int& exit_code) {
   auto options = std::make_shared<TopicsOptions>();
   auto* cmd = app.add_subcommand(
-      "topics", "what is on the bus: each topic's type, producers and measured rate");
+      "topics", "what is on the bus: each live topic's type, producers and measured rate");
   cmd->add_option("-s,--seconds", options->seconds,
                   "how long to measure each topic's rate [s] (default 2)")
       ->check(CLI::PositiveNumber);
@@ -222,7 +224,9 @@ CLI::App* addTopicsCommand(CLI::App& app, int& exit_code) {
   cmd->add_flag("-v,--verbose", options->verbose,
                 "list each writer: GUID, producer and ownership strength");
   cmd->add_flag("--json", options->json, "print JSON instead of a table");
+  cmd->add_flag("--all", options->all, "every registry topic, also those nobody writes on this domain");
   cmd->footer(
+      "Lists the topics a live writer announced or sent a sample of (--all: the whole registry).\n"
       "Producers are named by the header.source of their samples (Health for every\n"
       "component), else by their participant's name. RATE is 1 / mean interval of the\n"
       "samples written while listening, in wall time. Listens at least 4 s: the rig's\n"

@@ -4,8 +4,9 @@
 
 namespace flatsat::tools {
 
-/// `flatsat topics`: every registry topic (and any other discovered one) with
-/// its type, its producers and the rate measured over a few seconds.
+/// `flatsat topics`: every live topic (a writer announced it or sent a sample;
+/// --all: the whole registry) with its type, its producers and the rate
+/// measured over a few seconds.
 /// Sets exit_code when it runs: 0, or 1 when nothing is on the domain.
 CLI::App* addTopicsCommand(CLI::App& app, int& exit_code);
 

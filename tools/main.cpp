@@ -49,6 +49,7 @@
 #include "tools/StudyCommand.hpp"
 #include "analysis/Summary.hpp"
 #include "tools/TopicsCommand.hpp"
+#include "tools/TypesCommand.hpp"
 #include "flatsat_version.hpp"
 
 namespace fs = std::filesystem;
@@ -729,7 +730,8 @@ int main(int argc, char** argv) {
   auto* mc_cmd = tools::addMcCommand(app, mc_exit);
   int tool_exit = 0;
   std::vector<CLI::App*> tool_cmds = {
-      tools::addTopicsCommand(app, tool_exit), tools::addEchoCommand(app, tool_exit),
+      tools::addTopicsCommand(app, tool_exit), tools::addTypesCommand(app, tool_exit),
+      tools::addEchoCommand(app, tool_exit),
       tools::addHzCommand(app, tool_exit),     tools::addHealthCommand(app, tool_exit),
       tools::addExportCommand(app, tool_exit), tools::addInfoCommand(app, tool_exit),
       tools::addPlotCommand(app, tool_exit),
