@@ -153,6 +153,16 @@ std::map<GuidPrefix, ParticipantInfo> ToolBus::participants() const {
   return out;
 }
 
+std::vector<Guid> ToolBus::readersOf(const std::string& topic) const {
+  std::lock_guard lock(mutex_);
+  std::vector<Guid> out;
+  for (const auto& [guid, reader] : readers_) {
+    const auto it = participants_.find(guid.guidPrefix);
+    if (reader.second && reader.first == topic && it != participants_.end() && it->second.alive) out.push_back(guid);
+  }
+  return out;
+}
+
 std::vector<WriterInfo> ToolBus::writers() const {
   std::lock_guard lock(mutex_);
   std::vector<WriterInfo> out;

@@ -80,6 +80,8 @@ class ToolBus : private eprosima::fastdds::dds::DomainParticipantListener {
   bool readerDiscovered(const std::string& topic, const std::string& participant) const;
   /// How many live readers of `topic` discovery announced, in any participant.
   int readersDiscovered(const std::string& topic) const;
+  /// The live readers of `topic` discovery announced, by GUID.
+  std::vector<Guid> readersOf(const std::string& topic) const;
 
  private:
   void on_participant_discovery(eprosima::fastdds::dds::DomainParticipant* participant,

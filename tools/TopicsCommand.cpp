@@ -14,6 +14,7 @@
 
 #include "bus/Stamp.hpp"
 #include "tools/ToolBus.hpp"
+#include "tools/TopicInfo.hpp"
 
 namespace flatsat::tools {
 
@@ -231,7 +232,12 @@ CLI::App* addTopicsCommand(CLI::App& app, int& exit_code) {
       "component), else by their participant's name. RATE is 1 / mean interval of the\n"
       "samples written while listening, in wall time. Listens at least 4 s: the rig's\n"
       "components answer a new participant at their next discovery announcement.");
-  cmd->callback([options, &exit_code] { runReportingErrors(exit_code, [&] { return runTopics(*options); }); });
+  addTopicInfoCommand(*cmd, exit_code);
+  cmd->require_subcommand(0, 1);
+  cmd->callback([cmd, options, &exit_code] {
+    if (!cmd->get_subcommands().empty()) return;  // `topics info` ran
+    runReportingErrors(exit_code, [&] { return runTopics(*options); });
+  });
   return cmd;
 }
 

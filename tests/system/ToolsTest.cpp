@@ -228,6 +228,26 @@ TEST_CASE("topics lists the live topics with their producers and rates", "[syste
   const auto every = nlohmann::json::parse(all.output);
   for (const auto& t : every["topics"]) star_tracker |= t["name"] == "flatsat/star_tracker";
   CHECK(star_tracker);
+
+  // One topic, as ros2 topic info -v: type, QoS, producers and consumers.
+  const auto info = tool("topics info gyro --json");
+  INFO(info.output);
+  REQUIRE(info.exit_code == 0);
+  const auto gyro = nlohmann::json::parse(info.output);
+  CHECK(gyro["type"] == "flatsat::msg::GyroReading");
+  CHECK(gyro["qos_preset"] == "stepped");
+  CHECK(gyro["writer_qos"]["reliability"] == "reliable");
+  CHECK(gyro["writer_qos"]["ownership"] == "exclusive");
+  REQUIRE(gyro["producers"].size() == 1);
+  CHECK(gyro["producers"][0]["participant"] == "gyro");
+  std::set<std::string> consumers;
+  for (const auto& c : gyro["consumers"]) consumers.insert(c["participant"].get<std::string>());
+  CHECK(consumers.count("estimator") == 1);
+  CHECK(consumers.count("recorder") == 1);
+  const auto info_table = tool("topics info flatsat/gyro");
+  INFO(info_table.output);
+  CHECK(info_table.exit_code == 0);
+  CHECK(info_table.output.find("producers (1):") != std::string::npos);
 }
 
 TEST_CASE("types lists the topic types and prints one's IDL", "[system][tools]") {
