@@ -271,6 +271,26 @@ nlohmann::ordered_json summarize(const bus::Scenario& scenario, const std::strin
   return s;
 }
 
+namespace {
+
+/// "flatsat/magnetometer: magnetometer -> magnetometer_bridge at 12.3 s (gap 0.1 s)", the
+/// first three, then how many in all.
+std::string ownershipSwitches(const nlohmann::ordered_json& switches) {
+  constexpr std::size_t kShown = 3;
+  std::ostringstream out;
+  for (std::size_t i = 0; i < std::min(kShown, switches.size()); ++i) {
+    const auto& w = switches[i];
+    char times[64];
+    std::snprintf(times, sizeof times, " at %.6g s (gap %.3g s)", w.value("time_s", 0.0), w.value("gap_s", 0.0));
+    out << (i > 0 ? "; " : "") << w.value("topic", "?") << ": " << w.value("from", "?") << " -> " << w.value("to", "?")
+        << times;
+  }
+  if (switches.size() > kShown) out << "; " << switches.size() << " in all (summary.json)";
+  return out.str();
+}
+
+}  // namespace
+
 std::string summaryTable(const nlohmann::ordered_json& summary) {
   std::ostringstream out;
   std::size_t width = 0;
@@ -283,8 +303,12 @@ std::string summaryTable(const nlohmann::ordered_json& summary) {
       out << buffer;
     } else if (value.is_string()) {
       out << value.get<std::string>();
-    } else if (value.is_array() && !value.empty() && value.front().is_object()) {
+    } else if (key == "spacecraft" && value.is_array()) {
       out << value.size() << " summaries (spacecraft-<i>/summary.json)";
+    } else if (key == "ownership_switches" && value.is_array() && !value.empty()) {
+      out << ownershipSwitches(value);
+    } else if (value.is_array() && !value.empty() && value.front().is_object()) {
+      out << value.size() << " entries (summary.json)";
     } else {
       out << value.dump();
     }

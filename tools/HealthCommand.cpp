@@ -91,25 +91,27 @@ int health(const HealthOptions& o) {
   };
 
   if (!o.component.empty()) return probe(o, tool_bus, mutex, entries);
-  if (o.once) {
-    // Each component's health writer keeps its last sample for late joiners:
-    // done once every discovered health writer delivered, after the time
-    // discovery needs to find every component (at most --wait).
-    const auto start = Clock::now();
-    for (;;) {
-      if (!sleepUnlessInterrupted(0.1)) break;
-      const double waited = std::chrono::duration<double>(Clock::now() - start).count();
-      if (waited >= o.wait_s) break;
-      if (waited < std::min(kDiscoverySeconds, o.wait_s)) continue;
-      std::lock_guard lock(mutex);
-      bool missing = false;
-      for (const auto& w : tool_bus.writers()) {
-        if (!w.alive || w.topic != bus::topics::kHealth.name) continue;
-        missing |= std::none_of(entries.begin(), entries.end(),
-                                [&](const auto& e) { return e.second.writer == w.guid; });
-      }
-      if (!missing && !entries.empty()) break;
+  // Each component's health writer keeps its last sample for late joiners:
+  // the first table waits until every discovered health writer delivered,
+  // after the time discovery needs to find every component (at most --wait),
+  // so that it is never a part of the rig.
+  const auto start = Clock::now();
+  if (!o.once && !o.json) std::cerr << "flatsat health: discovering the rig on domain " << tool_bus.domain() << "\n";
+  for (;;) {
+    if (!sleepUnlessInterrupted(0.1)) return 0;
+    const double waited = std::chrono::duration<double>(Clock::now() - start).count();
+    if (waited >= o.wait_s) break;
+    if (waited < std::min(kDiscoverySeconds, o.wait_s)) continue;
+    std::lock_guard lock(mutex);
+    bool missing = false;
+    for (const auto& w : tool_bus.writers()) {
+      if (!w.alive || w.topic != bus::topics::kHealth.name) continue;
+      missing |= std::none_of(entries.begin(), entries.end(),
+                              [&](const auto& e) { return e.second.writer == w.guid; });
     }
+    if (!missing && !entries.empty()) break;
+  }
+  if (o.once) {
     const auto rows = snapshot();
     if (o.json) {
       std::cout << rows.dump(2) << "\n";
@@ -124,7 +126,7 @@ int health(const HealthOptions& o) {
   }
 
   const bool tty = ::isatty(STDOUT_FILENO) != 0;
-  while (sleepUnlessInterrupted(o.every_s)) {
+  for (bool first = true; first || sleepUnlessInterrupted(o.every_s); first = false) {
     const auto rows = snapshot();
     if (o.json) {
       std::cout << rows.dump() << "\n" << std::flush;
@@ -145,7 +147,7 @@ CLI::App* addHealthCommand(CLI::App& app, int& exit_code) {
       "health", "a live table of the rig's components: state, steps, message, age");
   cmd->add_flag("--once", options->once, "print one table and exit (tests, CI)");
   cmd->add_option("--wait", options->wait_s,
-                  "--once: wait at most S seconds for every component's health [s] (default 8; "
+                  "before the first table, wait at most S seconds for every component's health [s] (default 8; "
                   "discovery alone takes up to 4)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--component", options->component,
@@ -156,7 +158,8 @@ CLI::App* addHealthCommand(CLI::App& app, int& exit_code) {
       ->check(CLI::Range(0.1, 60.0));
   addDomainOption(*cmd, options->domain);
   cmd->footer(
-      "Refreshed every second until Ctrl-C. LAG is how many steps a component's last\n"
+      "Refreshed every second until Ctrl-C; the first table comes once every component\n"
+      "discovery found has reported (at most --wait). LAG is how many steps a component's last\n"
       "health is behind the one furthest ahead (the time master); AGE is the time since the component\n"
       "stamped its last health (wall clock; a running component reports every second);\n"
       "OVERRUNS and STALE count the paced steps it skipped or took with an old input.\n"

@@ -383,6 +383,13 @@ TEST_CASE("health --once lists every component of the running rig", "[system][to
   REQUIRE(json.exit_code == 0);
   const auto rows = nlohmann::json::parse(json.output);
   CHECK(rows.size() == kComponents.size());
+
+  // Watching, the first table is the whole rig, never what discovery found so far.
+  const auto watch = test::runCommand("timeout -s INT 9 " + kFlatsat + " health --json --every 1 2>/dev/null");
+  INFO(watch.output);
+  const auto refreshes = lines(watch.output);
+  REQUIRE_FALSE(refreshes.empty());
+  CHECK(nlohmann::json::parse(refreshes.front()).size() == kComponents.size());
   int furthest_ahead = 0;  // lag_steps: behind the component furthest ahead, so one has 0
   for (const auto& row : rows) {
     CAPTURE(row.dump());

@@ -115,3 +115,22 @@ TEST_CASE("a recording that stops short of the final step is not a completed run
   CHECK(s["pointing_error_deg_max"].is_null());
   CHECK(s["pointing_error_deg_mean"].is_null());
 }
+
+TEST_CASE("the summary table names each ownership switch, and a fleet's summaries as such", "[analysis]") {
+  nlohmann::ordered_json summary;
+  summary["steps"] = 3001;
+  summary["ownership_switches"] = nlohmann::ordered_json::array(
+      {{{"time_s", 12.3}, {"topic", "flatsat/magnetometer"}, {"from", "magnetometer"}, {"to", "magnetometer_bridge"},
+        {"gap_s", 0.1}}});
+  const auto one = flatsat::analysis::summaryTable(summary);
+  INFO(one);
+  CHECK(one.find("flatsat/magnetometer: magnetometer -> magnetometer_bridge at 12.3 s (gap 0.1 s)") != std::string::npos);
+  CHECK(one.find("summaries") == std::string::npos);
+
+  for (int i = 0; i < 4; ++i) summary["ownership_switches"].push_back(summary["ownership_switches"][0]);
+  CHECK(flatsat::analysis::summaryTable(summary).find("; 5 in all (summary.json)") != std::string::npos);
+
+  nlohmann::ordered_json fleet;
+  fleet["spacecraft"] = nlohmann::ordered_json::array({{{"steps", 1}}, {{"steps", 1}}});
+  CHECK(flatsat::analysis::summaryTable(fleet).find("2 summaries (spacecraft-<i>/summary.json)") != std::string::npos);
+}
