@@ -221,7 +221,12 @@ class Bridge {
   /// handed to the server's thread as one.
   void fromFeed(const std::vector<bus::LiveFrame>& frames) {
     server_.beginBatch();
-    for (const auto& f : frames) fromFeed(f);
+    try {
+      for (const auto& f : frames) fromFeed(f);
+    } catch (...) {
+      server_.endBatch();  // an open batch would hold every later message back
+      throw;
+    }
     server_.endBatch();
   }
   void fromFeed(const bus::LiveFrame& f) {

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "tools/ToolBus.hpp"
 
+#include <sstream>
+
 #include <filesystem>
 #include <thread>
 
@@ -136,15 +138,7 @@ bool ToolBus::readerDiscovered(const std::string& topic, const std::string& part
   return false;
 }
 
-int ToolBus::readersDiscovered(const std::string& topic) const {
-  std::lock_guard lock(mutex_);
-  int count = 0;
-  for (const auto& [guid, reader] : readers_) {
-    const auto it = participants_.find(guid.guidPrefix);
-    count += reader.second && reader.first == topic && it != participants_.end() && it->second.alive ? 1 : 0;
-  }
-  return count;
-}
+int ToolBus::readersDiscovered(const std::string& topic) const { return static_cast<int>(readersOf(topic).size()); }
 
 std::map<GuidPrefix, ParticipantInfo> ToolBus::participants() const {
   std::lock_guard lock(mutex_);
@@ -214,6 +208,12 @@ void flattenJson(const nlohmann::ordered_json& value, const std::string& path,
   } else {
     out.emplace_back(path, &value);
   }
+}
+
+std::string guidText(const Guid& guid) {
+  std::ostringstream out;
+  out << guid;
+  return out.str();
 }
 
 const nlohmann::ordered_json* fieldOf(const nlohmann::ordered_json& sample, std::string_view path) {

@@ -104,6 +104,9 @@ class ToolBus : private eprosima::fastdds::dds::DomainParticipantListener {
 /// tools read with) hands it over.
 using bus::Arrival;
 
+/// A GUID as Fast DDS prints it ("01.0f.…|0.0.6.3").
+std::string guidText(const Guid& guid);
+
 /// "truth" for "flatsat/truth".
 std::string_view shortTopicName(std::string_view topic);
 /// Every registry topic, comma separated (for error messages).

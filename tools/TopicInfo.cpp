@@ -58,12 +58,6 @@ nlohmann::ordered_json describe(const Qos& q) {
           {"deadline", seconds(q.deadline().period)}};
 }
 
-std::string text(const Guid& guid) {
-  std::ostringstream out;
-  out << guid;
-  return out.str();
-}
-
 void print(const nlohmann::ordered_json& out) {
   const auto& producers = out["producers"];
   const auto& consumers = out["consumers"];
@@ -105,12 +99,12 @@ int showTopic(const Def& def, const TopicInfoOptions& o) {
   auto& producers = out["producers"] = nlohmann::ordered_json::array();
   for (const auto& w : tool_bus.writers()) {
     if (!w.alive || w.topic != def.name) continue;
-    producers.push_back({{"participant", participant(w.guid)}, {"writer_guid", text(w.guid)},
+    producers.push_back({{"participant", participant(w.guid)}, {"writer_guid", guidText(w.guid)},
                          {"ownership_strength", w.ownership_strength}});
   }
   auto& consumers = out["consumers"] = nlohmann::ordered_json::array();
   for (const auto& guid : tool_bus.readersOf(std::string(def.name))) {
-    consumers.push_back({{"participant", participant(guid)}, {"reader_guid", text(guid)}});
+    consumers.push_back({{"participant", participant(guid)}, {"reader_guid", guidText(guid)}});
   }
   if (o.json) {
     std::cout << out.dump(2) << "\n";

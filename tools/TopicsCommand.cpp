@@ -55,12 +55,6 @@ struct Producer {
   std::int32_t ownership_strength = 0;
 };
 
-std::string toString(const Guid& guid) {
-  std::ostringstream out;
-  out << guid;
-  return out.str();
-}
-
 /// [Hz] the sum over the writers of 1 / mean interval of their samples: how
 /// long discovery took to match each writer does not count.
 double rateHz(const TopicStats& stats) {
@@ -129,7 +123,7 @@ int runTopics(const TopicsOptions& o) {
   const auto nameOf = [&](const Guid& guid) {
     if (auto it = sources.find(guid.guidPrefix); it != sources.end()) return it->second;
     const auto name = tool_bus.participantName(guid.guidPrefix);
-    return name.empty() ? toString(guid) : name;
+    return name.empty() ? guidText(guid) : name;
   };
   std::map<std::string, std::map<Guid, Producer>> producers;
   for (const auto& writer : tool_bus.writers()) {
@@ -169,7 +163,7 @@ int runTopics(const TopicsOptions& o) {
     auto& list = t["producers"] = nlohmann::ordered_json::array();
     for (const auto& [guid, p] : producers[topic]) {
       list.push_back({{"name", p.name},
-                      {"writer_guid", toString(guid)},
+                      {"writer_guid", guidText(guid)},
                       {"ownership_strength", p.ownership_strength}});
     }
     topics.push_back(t);

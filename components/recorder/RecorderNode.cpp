@@ -51,18 +51,11 @@ RecorderNode::RecorderNode(bus::Bus& bus, bus::NodeOptions options, const Record
       record(def);
     }
   });
-  health_ = std::make_unique<bus::ReaderOf<bus::topics::kHealth>>(
-      bus, bus::topics::kHealth,
-      [this](const msg::Health& health) {
-        const auto payload = bus::serialize<std::remove_cvref_t<decltype(bus::topics::kHealth)>>(health);
-        store(std::string(bus::topics::kHealth.name), health.header(), payload);
-        feed(std::string(bus::topics::kHealth.name), health.header(), payload, true);
-      },
-      [this](const std::string& source, bool alive) {
-        if (!live_feed_ || !live_feed_->watched()) return;
-        live_feed_->liveliness(source, alive);
-        live_feed_->flushUnlessRecent(kFeedQuiet);
-      });
+  health_ = recordAsItComes(bus, bus::topics::kHealth, [this](const std::string& source, bool alive) {
+    if (!feedWatched()) return;
+    live_feed_->liveliness(source, alive);
+    live_feed_->flushUnlessRecent(kFeedQuiet);
+  });
   fault_commands_ = recordAsItComes(bus, bus::topics::kFaultCmd);
   fault_events_ = recordAsItComes(bus, bus::topics::kFaultEvent);
   mode_commands_ = recordAsItComes(bus, bus::topics::kUnloadingModeCmd);
@@ -76,7 +69,7 @@ RecorderNode::RecorderNode(bus::Bus& bus, bus::NodeOptions options, const Record
     if (last_grant_ && grant.header().step() <= *last_grant_) return;
     last_grant_ = grant.header().step();
     const bool kept = recorded(grant.header().step());
-    if (!kept && !(live_feed_ && live_feed_->watched())) return;
+    if (!kept && !feedWatched()) return;
     const auto payload = bus::serialize<std::remove_cvref_t<decltype(bus::topics::kStepGrant)>>(grant);
     if (kept) store(std::string(bus::topics::kStepGrant.name), grant.header(), payload);
     feed(std::string(bus::topics::kStepGrant.name), grant.header(), payload, false);
@@ -103,18 +96,21 @@ bool RecorderNode::recordedAlready(const std::string& topic, const msg::SampleHe
 }
 
 template <class Def>
-std::unique_ptr<bus::Reader<Def>> RecorderNode::recordAsItComes(bus::Bus& bus, const Def& def) {
+std::unique_ptr<bus::Reader<Def>> RecorderNode::recordAsItComes(
+    bus::Bus& bus, const Def& def, typename bus::Reader<Def>::LivelinessCallback on_liveliness) {
   return std::make_unique<bus::Reader<Def>>(
-      bus, def, [this, topic = std::string(def.name)](const typename Def::Type& sample) {
+      bus, def,
+      [this, topic = std::string(def.name)](const typename Def::Type& sample) {
         const auto payload = bus::serialize<Def>(sample);
         store(topic, sample.header(), payload);
         feed(topic, sample.header(), payload, true);
-      });
+      },
+      std::move(on_liveliness));
 }
 
 void RecorderNode::feed(const std::string& topic, const msg::SampleHeader& header,
                         const std::vector<std::uint8_t>& payload, bool now) {
-  if (!live_feed_ || !live_feed_->watched()) return;
+  if (!feedWatched()) return;
   live_feed_->sample(topic, header.sim_time_ns(), payload.data(), payload.size());
   if (now) live_feed_->flushUnlessRecent(kFeedQuiet);
 }
@@ -133,7 +129,7 @@ void RecorderNode::record(const Def& def) {
   // k then guarantees they are all in before StepDone(k).
   addTap(def, [this, topic = std::string(def.name)](const typename Def::Type& sample) {
     const bool kept = recorded(sample.header().step());
-    if (!kept && !(live_feed_ && live_feed_->watched())) return;
+    if (!kept && !feedWatched()) return;
     thread_local std::vector<std::uint8_t> payload;  // its capacity stays: no allocation per sample
     bus::serializeInto<Def>(sample, payload);
     if (kept) store(topic, sample.header(), payload);
@@ -167,7 +163,7 @@ RecorderNode::~RecorderNode() {
   } catch (const std::exception& e) {
     spdlog::error("{}: the intruders' fault events were not kept: {}", name(), e.what());
   }
-  if (live_feed_ && live_feed_->watched()) {
+  if (feedWatched()) {
     live_feed_->end();
     if (const auto dropped = live_feed_->framesDropped(); dropped > 0) {
       spdlog::warn("{}: the live feed's watchers missed {} frames (they did not keep up)", name(), dropped);
@@ -193,7 +189,7 @@ void RecorderNode::storeIntruders() {
 }
 
 void RecorderNode::step(const bus::StepContext& ctx) {
-  if (live_feed_) live_feed_->flush();  // the step's samples, one send per watcher
+  if (feedWatched()) live_feed_->flush();  // the step's samples, one send per watcher
   storeIntruders();
   if (recorded(ctx.step)) recordDeliveries(ctx);
   if ((ctx.step + 1) % params_.commit_every_steps != 0) return;

@@ -49,9 +49,11 @@ class RecorderNode final : public bus::Component {
   void beforeStopped() override;
   template <class Def>
   void record(const Def& def);
-  /// Topics that are not stepped: stored on arrival, never waited for.
+  /// Topics that are not stepped: stored on arrival, never waited for;
+  /// `on_liveliness`: their writers' liveliness changes (health's, for the live feed).
   template <class Def>
-  std::unique_ptr<bus::Reader<Def>> recordAsItComes(bus::Bus& bus, const Def& def);
+  std::unique_ptr<bus::Reader<Def>> recordAsItComes(bus::Bus& bus, const Def& def,
+                                                    typename bus::Reader<Def>::LivelinessCallback on_liveliness = {});
   void store(const std::string& topic, const msg::SampleHeader& header,
              const std::vector<std::uint8_t>& payload);
   /// A sample to the live feed's watchers, if any, sent with the step; `now`:
@@ -59,6 +61,7 @@ class RecorderNode final : public bus::Component {
   /// stalled lockstep rig).
   void feed(const std::string& topic, const msg::SampleHeader& header, const std::vector<std::uint8_t>& payload,
             bool now);
+  bool feedWatched() const { return live_feed_ && live_feed_->watched(); }
 
   /// Resuming (bus::meta::kResumeAfterStep): a sample of a step the recording
   /// holds already is compared with it (counted), not stored. The caller holds recording_mutex_.
