@@ -11,6 +11,7 @@
 #include <spdlog/sinks/stdout_color_sinks.h>
 
 #include "bus/Topics.hpp"
+#include "flatsat_version.hpp"
 
 namespace flatsat::bus {
 
@@ -30,10 +31,15 @@ NodeArgs parseNodeArgs(int argc, char** argv, const std::string& default_name) {
   app.add_flag("--shared-memory-rig", args.shared_memory_rig,
                "every process of this rig runs on this host, started by flatsat run: "
                "a lockstep sink reads best-effort where it shares memory");
+  app.set_version_flag("--version", kFlatsatVersion);
   try {
     app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
+  } catch (const CLI::Success& e) {  // --help, --version
     std::exit(app.exit(e));
+  } catch (const CLI::ParseError& e) {
+    // A usage error exits 2, as the flatsat tool's do, whatever CLI11's own code.
+    app.exit(e);
+    std::exit(2);
   }
   auto logger = spdlog::stderr_color_mt(args.name);
   logger->set_pattern("[%H:%M:%S.%e] [%n] [%^%l%$] %v");

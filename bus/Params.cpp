@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "bus/Params.hpp"
 
+#include "bus/NearestName.hpp"
+
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
@@ -88,6 +90,7 @@ std::string ParamReader::where(const YAML::Node& node) const {
 }
 
 void ParamReader::problem(const std::string& key, const std::string& reason) {
+  if (!key.empty()) failed_.push_back(key);
   const YAML::Node node = (!key.empty() && node_.IsMap() && node_[key]) ? node_[key] : node_;
   problems_.add(where(node) + ": " + keyPath(key) + ": " + reason);
 }
@@ -96,6 +99,7 @@ void ParamReader::problems(const std::vector<std::string>& field_reasons) {
   for (const auto& field_reason : field_reasons) {
     const auto colon = field_reason.find(':');
     const auto field = field_reason.substr(0, colon);
+    if (colon != std::string::npos && failed(field)) continue;
     // A validate() field named after a YAML key points at that key's line.
     if (colon != std::string::npos && node_.IsMap() && node_[field]) {
       problem(field, trim(field_reason.substr(colon + 1)));
@@ -103,6 +107,10 @@ void ParamReader::problems(const std::vector<std::string>& field_reasons) {
       problem("", field_reason);
     }
   }
+}
+
+bool ParamReader::failed(const std::string& key) const {
+  return std::find(failed_.begin(), failed_.end(), key) != failed_.end();
 }
 
 bool ParamReader::has(const std::string& key) const {
@@ -142,7 +150,7 @@ void ParamReader::finish() {
     }
     const auto key = entry.first.as<std::string>();
     if (std::find(used_.begin(), used_.end(), key) == used_.end()) {
-      problems_.add(where(entry.first) + ": " + keyPath(key) + ": unknown key");
+      problems_.add(where(entry.first) + ": " + keyPath(key) + ": unknown key" + didYouMean(key, used_));
     }
   }
 }

@@ -44,8 +44,14 @@ class ParamReader {
   void leave(const std::vector<std::string>& keys) { used_.insert(used_.end(), keys.begin(), keys.end()); }
   /// Reports a problem at `key` (or at the mapping itself when key is empty).
   void problem(const std::string& key, const std::string& reason);
-  /// Reports each "field: reason" of a validate() at this mapping's path.
+  /// Reports each "field: reason" of a validate() at this mapping's path,
+  /// except for a field that already has a problem or was excused.
   void problems(const std::vector<std::string>& field_reasons);
+  /// True when a problem was reported at `key`.
+  bool failed(const std::string& key) const;
+  /// `key` is derived from one that failed (semi_major_axis_m from a misread
+  /// altitude_m): its validate() reason would only repeat that error.
+  void excuse(const std::string& key) { failed_.push_back(key); }
 
   void read(const std::string& key, double& value, std::string_view unit);
   void read(const std::string& key, Eigen::Vector3d& value, std::string_view unit);
@@ -78,6 +84,7 @@ class ParamReader {
   std::string path_;
   ConfigProblems& problems_;
   std::vector<std::string> used_;
+  std::vector<std::string> failed_;
 };
 
 }  // namespace flatsat::bus

@@ -6,6 +6,9 @@
 #include <filesystem>
 #include <ios>
 
+#include "bus/InstallPaths.hpp"
+#include "bus/ScenarioPlaces.hpp"
+
 namespace flatsat::bus {
 
 Schedule Scenario::schedule() const {
@@ -130,7 +133,17 @@ YAML::Node merged(const YAML::Node& base, const YAML::Node& over) {
   return out;
 }
 
-YAML::Node loadWithBases(const std::string& path, std::vector<std::string>& chain) {
+/// The file `base:` names: beside the scenario naming it, else (a bare name
+/// such as `default`) the installed or FLATSAT_SCENARIO_PATH scenario.
+std::string basePath(const std::string& path, const std::string& base) {
+  const auto beside = std::filesystem::path(path).parent_path() / base;
+  if (std::filesystem::exists(beside)) return beside.string();
+  if (const auto named = resolveScenario(base)) return *named;
+  return beside.string();
+}
+
+/// `chain`: canonical paths (a loop's proof); `files`: the same as opened, the user's first.
+YAML::Node loadWithBases(const std::string& path, std::vector<std::string>& chain, std::vector<std::string>& files) {
   if (!std::filesystem::exists(path)) throw ScenarioError(path + ": no such file");
   // A directory opens as a stream that throws on its first read (fuzz.scenario: `base: !0`).
   if (std::filesystem::is_directory(path)) throw ScenarioError(path + ": is a directory, not a scenario file");
@@ -139,6 +152,7 @@ YAML::Node loadWithBases(const std::string& path, std::vector<std::string>& chai
     throw ScenarioError(path + ": base: the scenario is its own base (through " + chain.front() + ")");
   }
   chain.push_back(canonical);
+  files.push_back(path);
   YAML::Node root;
   try {
     root = YAML::LoadFile(path);
@@ -148,27 +162,60 @@ YAML::Node loadWithBases(const std::string& path, std::vector<std::string>& chai
   } catch (const std::ios_base::failure& e) {
     throw ScenarioError(path + ": cannot be read: " + e.what());
   }
+  if (const auto duplicates = duplicateKeys(root, path); !duplicates.empty()) {
+    std::string listed;
+    for (const auto& d : duplicates) listed += "  " + d + "\n";
+    throw ScenarioError(path + ": invalid scenario:\n" + listed);
+  }
   if (!root.IsMap() || !root["base"]) return root;
   if (!root["base"].IsScalar() || root["base"].Scalar().empty()) {
     throw ScenarioError(path + ":" + std::to_string(root["base"].Mark().line + 1) + ": base: must be a file name");
   }
-  const auto base_path = std::filesystem::path(path).parent_path() / root["base"].as<std::string>();
+  const std::string base_path = basePath(path, root["base"].as<std::string>());
   YAML::Node own = YAML::Clone(root);
   own.remove("base");
-  return merged(loadWithBases(base_path.string(), chain), own);
+  return merged(loadWithBases(base_path, chain, files), own);
 }
 
 }  // namespace
 
-YAML::Node loadScenarioYaml(const std::string& path) {
-  std::vector<std::string> chain;
-  return loadWithBases(path, chain);
+YAML::Node loadScenarioYaml(const std::string& path, std::vector<std::string>* files) {
+  std::vector<std::string> chain, opened;
+  YAML::Node root = loadWithBases(path, chain, opened);
+  if (files != nullptr) *files = opened;
+  return root;
 }
+
+namespace {
+
+/// duration_s or duration_orbits, one of them, each within what a run can
+/// step (kMaxRunDuration_s, kMaxRunOrbits; the step count is bounded where
+/// the orbit's period is known, in the dynamics server's reader).
+void readDuration(ParamReader& top, Scenario& scenario) {
+  top.read("duration_s", scenario.duration_s, "s");
+  top.read("duration_orbits", scenario.duration_orbits, "-");
+  const bool by_time = top.has("duration_s"), by_orbits = top.has("duration_orbits");
+  if (by_time && by_orbits) {
+    // A base sets one and the user the other: the common case, so say how to drop the base's.
+    top.problem("duration_s", "give duration_s or duration_orbits, not both (to run by time, also set "
+                              "`duration_orbits: null`, or --set duration_orbits=null)");
+  } else if (!by_time && !by_orbits) {
+    top.problem("", "give one of duration_s or duration_orbits");
+  } else if (by_time && !top.failed("duration_s") &&
+             !(scenario.duration_s > 0.0 && scenario.duration_s <= kMaxRunDuration_s)) {
+    top.problem("duration_s", "must be in (0, 3.16e8 s] (ten years)");
+  } else if (by_orbits && !top.failed("duration_orbits") &&
+             !(scenario.duration_orbits > 0.0 && scenario.duration_orbits <= kMaxRunOrbits)) {
+    top.problem("duration_orbits", "must be in (0, 100000]");
+  }
+}
+
+}  // namespace
 
 Scenario loadScenario(const std::string& path) {
   Scenario scenario;
   scenario.file = path;
-  scenario.root = loadScenarioYaml(path);
+  scenario.root = loadScenarioYaml(path, &scenario.files);
   ConfigProblems problems;
   ParamReader top(scenario.root, path, "", problems);
   if (!scenario.root.IsMap()) throw ScenarioError(path + ": must be a YAML mapping");
@@ -198,11 +245,7 @@ Scenario loadScenario(const std::string& path) {
   } else if (scenario.pacing == Pacing::kPaced && scenario.step_s > 10.0) {
     top.problem("step_s", "must be at most 10 s in a paced run");
   }
-  top.read("duration_s", scenario.duration_s, "s");
-  top.read("duration_orbits", scenario.duration_orbits, "-");
-  if ((scenario.duration_s > 0) == (scenario.duration_orbits > 0)) {
-    top.problem("", "give exactly one of duration_s or duration_orbits, > 0");
-  }
+  readDuration(top, scenario);
   top.read("liveliness_lease_s", scenario.liveliness_lease_s, "s");
   if (!(scenario.liveliness_lease_s >= 0.05 && scenario.liveliness_lease_s <= 60.0)) {
     top.problem("liveliness_lease_s", "must be in [50 ms, 60 s]");
@@ -254,7 +297,11 @@ Scenario loadScenario(const std::string& path) {
   scenario.programs = readPrograms(top, scenario);
   for (const auto& section : kPlantSections) top.section(section);
   top.finish();
-  if (!problems.empty()) throw ScenarioError(path + ": invalid scenario:\n" + problems.joined());
+  if (!problems.empty()) {
+    std::string listed;
+    for (const auto& problem : problems.list()) listed += "  " + placeProblem(problem, path, scenario.files) + "\n";
+    throw ScenarioError(path + ": invalid scenario:\n" + listed);
+  }
   return scenario;
 }
 

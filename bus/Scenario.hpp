@@ -51,8 +51,16 @@ inline constexpr std::size_t kMaxComponentName = 31;
 
 /// The top level of a scenario file. Component parameters stay as YAML
 /// nodes: each component reads its own section (componentParams()).
+/// The longest run a scenario may ask for: ten years, 100000 orbits (fifteen
+/// years in low orbit), and 1e9 steps (a day of wall time composed).
+inline constexpr double kMaxRunDuration_s = 3.16e8;
+inline constexpr double kMaxRunOrbits = 1e5;
+inline constexpr double kMaxRunSteps = 1e9;
+
 struct Scenario {
   std::string file;
+  /// `file` and the bases it names, in that order: where problems are placed (bus/ScenarioPlaces.hpp).
+  std::vector<std::string> files;
   YAML::Node root;
   std::string name;
   Pacing pacing = Pacing::kLockstep;  ///< mode: lockstep | paced
@@ -90,11 +98,13 @@ inline const std::vector<std::string> kPlantSections = {"spacecraft", "orbit", "
                                                         "initial", "onboard"};
 
 /// The scenario file's YAML with its `base:` resolved: `base: other.yaml`
-/// (relative to the file) takes that scenario and lays this file's keys over
-/// it, mappings merged key by key, anything else replaced; bases may have
-/// bases. Keys that come from a base report the base's lines.
-/// @throws ScenarioError naming the file: missing, not YAML, a base loop.
-YAML::Node loadScenarioYaml(const std::string& path);
+/// (relative to the file, else a scenario name as `flatsat run` takes) takes
+/// that scenario and lays this file's keys over it, mappings merged key by
+/// key, anything else replaced; bases may have bases. `files` gets the file
+/// and its bases, the user's first.
+/// @throws ScenarioError naming the file: missing, not YAML, a key written
+/// twice in one mapping, a base loop.
+YAML::Node loadScenarioYaml(const std::string& path, std::vector<std::string>* files = nullptr);
 
 /// Loads and checks the top level; throws ScenarioError listing every
 /// problem as "file:line:col: key: reason".

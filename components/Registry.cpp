@@ -8,6 +8,7 @@
 
 #include <spdlog/fmt/fmt.h>
 
+#include "bus/NearestName.hpp"
 #include "components/attitude_controller/AttitudeControllerNode.hpp"
 #include "components/dynamics_server/DynamicsServerNode.hpp"
 #include "components/estimator/EstimatorNode.hpp"
@@ -231,9 +232,13 @@ std::vector<std::string> checkScenario(const bus::Scenario& scenario, const std:
     const ComponentKind* k = findComponentKind(component.name);
     if (k == nullptr) {
       std::string known;
-      for (const auto& each : componentKinds()) known += " " + each.name;
-      problems.add(scenario.file + ": components." + component.name +
-                   ": unknown component (known:" + known + ")");
+      std::vector<std::string> names;
+      for (const auto& each : componentKinds()) {
+        known += " " + each.name;
+        names.push_back(each.name);
+      }
+      problems.add(scenario.file + ": components." + component.name + ": unknown component" +
+                   bus::didYouMean(component.name, names) + " (known:" + known + ")");
       continue;
     }
     k->check(scenario, vehicle, {scenario.file, component.name, out_dir}, problems);

@@ -4,6 +4,8 @@
 #   deploy/rig.sh run [SCENARIO] [flatsat run options]  install, build, run (default scenario)
 #   deploy/rig.sh test                                   install, build, run every test (each
 #                                                        fuzz target for 30 s among them)
+#   deploy/rig.sh package                                install, build, make the Debian package
+#                                                        build/flatsat_<version>_amd64.deb
 #   deploy/rig.sh fuzz [SECONDS]                         libFuzzer build (clang), each fuzz
 #                                                        target for SECONDS (default 600)
 #   deploy/rig.sh build | deps                           just those steps
@@ -29,7 +31,9 @@ packages=(
 # `flatsat mc --slurm` (deploy/slurm/local-cluster.sh; its daemons start only
 # in that test), and Node.js for the interop tier's published readers
 # (tests/interop: npm ci of its package-lock.json).
-test_packages=(docker.io docker-compose debootstrap nftables munge slurmctld slurmd slurm-client)
+test_packages=(docker.io docker-compose debootstrap nftables munge slurmctld slurmd slurm-client help2man)
+# Only for `package` (and the package tests): man pages from each --help.
+package_packages=(help2man dpkg-dev)
 # Node.js from Debian unless one is installed already (another vendor's
 # nodejs carries its own npm, and Debian's npm would conflict with it).
 command -v npm >/dev/null 2>&1 || test_packages+=(nodejs npm)
@@ -88,6 +92,11 @@ case "$cmd" in
     if [ $# -gt 0 ] && [[ "$1" != -* ]]; then scenario="$1"; shift; fi
     exec "$build/bin/flatsat" run "$scenario" "$@"
     ;;
+  package)
+    deps "${package_packages[@]}"; build
+    cmake --build "$build" --target deb
+    ls "$build"/flatsat_*_amd64.deb
+    ;;
   fuzz)
     deps "${fuzz_packages[@]}"
     build_fuzzers "${1:-600}"
@@ -113,5 +122,5 @@ case "$cmd" in
       "$jobs" > ctest-resources.json
     exec ctest --output-on-failure -j"$((jobs + 1))" --timeout 1500 --resource-spec-file ctest-resources.json
     ;;
-  *) echo "usage: $0 run [SCENARIO] [options] | test | fuzz [SECONDS] | build | deps" >&2; exit 2 ;;
+  *) echo "usage: $0 run [SCENARIO] [options] | test | package | fuzz [SECONDS] | build | deps" >&2; exit 2 ;;
 esac

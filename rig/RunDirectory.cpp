@@ -12,6 +12,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "bus/Scenario.hpp"
+#include "bus/ScenarioPlaces.hpp"
 
 namespace flatsat::rig {
 
@@ -53,34 +54,12 @@ std::string writeRunScenario(const std::string& scenario_file, const std::string
   return out;
 }
 
-namespace {
-
-/// The place (1-based "line:col") of `key` ("a.b.c") in a YAML file; "" when absent.
-std::string placeOf(const std::string& file, const std::string& key) {
-  try {
-    YAML::Node node = YAML::LoadFile(file);
-    for (std::size_t start = 0;;) {
-      const auto dot = key.find('.', start);
-      const std::string part = key.substr(start, dot - start);
-      if (!node.IsMap() || !node[part]) return "";
-      node = node[part];
-      if (dot == std::string::npos) break;
-      start = dot + 1;
-    }
-    return std::to_string(node.Mark().line + 1) + ":" + std::to_string(node.Mark().column + 1);
-  } catch (const YAML::Exception&) {
-    return "";
-  }
-}
-
-}  // namespace
 
 std::string attributeProblem(const std::string& problem, const std::string& resolved,
                              const std::string& scenario_file, const std::vector<std::string>& overrides) {
-  // "<resolved>:L:C: key: reason"
-  const std::string prefix = resolved + ":";
-  if (problem.rfind(prefix, 0) != 0) return problem;
-  const auto place_end = problem.find(": ", prefix.size());
+  // "<resolved>:L:C: key: reason" or "<resolved>: key: reason"
+  if (problem.rfind(resolved + ":", 0) != 0) return problem;
+  const auto place_end = problem.find(": ", resolved.size());
   if (place_end == std::string::npos) return problem;
   const auto key_end = problem.find(": ", place_end + 2);
   const std::string key = problem.substr(place_end + 2, key_end == std::string::npos ? std::string::npos
@@ -91,9 +70,14 @@ std::string attributeProblem(const std::string& problem, const std::string& reso
       return "--set " + assignment + ": " + problem.substr(place_end + 2);
     }
   }
-  const std::string place = placeOf(scenario_file, key);
-  if (place.empty()) return problem;
-  return scenario_file + ":" + place + ": " + problem.substr(place_end + 2);
+  // Placed in the user's file, or in the base that writes the key.
+  std::vector<std::string> files;
+  try {
+    bus::loadScenarioYaml(scenario_file, &files);
+  } catch (const bus::ScenarioError&) {
+    files = {scenario_file};
+  }
+  return bus::placeProblem(scenario_file + ": " + problem.substr(place_end + 2), scenario_file, files);
 }
 
 std::string recordOnceASecond(double step_s) {

@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+#include "bus/InstallPaths.hpp"
 #include "tools/FieldCommand.hpp"
 
 #include <chrono>
@@ -32,13 +33,10 @@ struct FieldOptions {
   double alt_km = 0.0;   // [km] height above the WGS-84 ellipsoid
 };
 
-// The data file under the source tree's data/ or else the installed copy; empty if neither exists.
+// The data file in the first data folder holding it; empty if none does.
 std::string dataFile(const std::string& relative) {
-  for (const std::string dir : {FLATSAT_SOURCE_DATA_DIR, FLATSAT_INSTALL_DATA_DIR}) {
-    const std::string path = dir + "/" + relative;
-    if (std::filesystem::exists(path)) return path;
-  }
-  return {};
+  const auto found = bus::findIn(bus::dataDirs(), relative);
+  return found ? found->string() : std::string();
 }
 
 // The seed's first-harmonic model at a point: the ascending pass of a polar orbit
@@ -70,7 +68,7 @@ int runField(const FieldOptions& o) {
   const std::string file = dataFile(wmm ? "wmm/WMM2025.COF" : "igrf/igrf14coeffs.txt");
   if (file.empty()) {
     std::cerr << "error: no " << (wmm ? "wmm/WMM2025.COF" : "igrf/igrf14coeffs.txt") << " under "
-              << FLATSAT_SOURCE_DATA_DIR << " or " << FLATSAT_INSTALL_DATA_DIR << "\n";
+              << bus::listOfDirs(bus::dataDirs()) << " (FLATSAT_DATA_DIR adds folders)\n";
     return kExitMissingData;
   }
   const sim::GeodeticPosition p{o.lat_deg * kDeg, o.lon_deg * kDeg, o.alt_km * 1e3};

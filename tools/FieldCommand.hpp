@@ -13,7 +13,7 @@ namespace flatsat::tools {
 /// D, I [deg], and for igrf14 and wmm2025 their yearly change. The command runs in
 /// its callback while `app` parses and leaves its status in exit_code: 0, 1 when a
 /// data file is missing, 2 for an unknown model or an input out of range.
-/// Data files come from FLATSAT_SOURCE_DATA_DIR, else FLATSAT_INSTALL_DATA_DIR.
+/// Data files come from bus::dataDirs() (FLATSAT_DATA_DIR, then the install's share/flatsat/data).
 CLI::App* addFieldCommand(CLI::App& app, int& exit_code);
 
 /// [µs] Mean wall time of one field.b_G_nT() over `evaluations` (> 0) points spread

@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+#include "bus/InstallPaths.hpp"
 #include "tools/GrantsCommand.hpp"
 
 #include <unistd.h>
@@ -42,9 +43,9 @@ std::vector<TopicInfo> registryTopics() {
   return topics;
 }
 
-/// The scenarios shipped with flatsat (source tree, else installed), default.yaml first.
+/// The scenarios shipped with flatsat (the first scenario folder holding any), default.yaml first.
 std::vector<bus::Scenario> shippedScenarios(std::string& where) {
-  for (const char* dir : {FLATSAT_SOURCE_SCENARIO_DIR, FLATSAT_INSTALL_SCENARIO_DIR}) {
+  for (const auto& dir : bus::scenarioDirs()) {
     if (!fs::is_directory(dir)) continue;
     std::vector<fs::path> files;
     for (const auto& entry : fs::directory_iterator(dir)) {
@@ -63,11 +64,11 @@ std::vector<bus::Scenario> shippedScenarios(std::string& where) {
       }
     }
     if (!scenarios.empty()) {
-      where = dir;
+      where = dir.string();
       return scenarios;
     }
   }
-  where = std::string(FLATSAT_SOURCE_SCENARIO_DIR) + " or " + FLATSAT_INSTALL_SCENARIO_DIR;
+  where = bus::listOfDirs(bus::scenarioDirs());
   return {};
 }
 

@@ -1,4 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
+#include "tools/ScenarioName.hpp"
+#include "bus/InstallPaths.hpp"
 #include "tools/MagneticStudyCommand.hpp"
 
 #include <algorithm>
@@ -27,10 +29,7 @@ struct MagneticStudyOptions {
 
 std::string defaultScenario(const std::string& kind) {
   const std::string file = kind == "spin" ? "s4_spin.yaml" : "detumble.yaml";
-  for (const char* dir : {FLATSAT_SOURCE_SCENARIO_DIR, FLATSAT_INSTALL_SCENARIO_DIR}) {
-    if (fs::exists(fs::path(dir) / file)) return (fs::path(dir) / file).string();
-  }
-  return "deploy/scenarios/" + file;
+  return bus::installedScenario(file);
 }
 
 std::string orNone(const std::optional<double>& v) {
@@ -101,7 +100,7 @@ void addMagneticStudies(CLI::App& study, int& exit_code) {
         kind, std::string(kind) == "spin" ? "S4 spin capture: seeded tumbles, time to capture, coil duty"
                                           : "B-dot detumble: seeded tumbles, time to detumble, coil duty");
     cmd->add_option("--cases", options->cases, "seeds 1..N")->capture_default_str()->check(CLI::PositiveNumber);
-    cmd->add_option("--scenario", options->scenario, "scenario (default: detumble.yaml or s4_spin.yaml)");
+    cmd->add_option("--scenario", options->scenario, "scenario (default: detumble.yaml or s4_spin.yaml)")->transform(scenarioByName());
     cmd->callback([options, &exit_code] { exit_code = runMagneticStudy(*options); });
   }
 }

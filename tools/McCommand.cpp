@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+#include "tools/ScenarioName.hpp"
 #include "tools/McCommand.hpp"
 
 #include <sys/wait.h>
@@ -332,7 +333,7 @@ int runCampaign(McOptions o) {
 CLI::App* addMcCommand(CLI::App& app, int& exit_code) {
   auto o = std::make_shared<McOptions>();
   auto* mc = app.add_subcommand("mc", "Monte Carlo: seeded composed runs in parallel (or on Slurm), one table");
-  mc->add_option("scenario", o->scenario, "scenario file (YAML)");
+  mc->add_option("scenario", o->scenario, "scenario file (YAML) or name")->transform(scenarioByName());
   auto* runs = mc->add_option("--runs", o->runs, "number of runs");
   mc->add_option("--jobs", o->jobs, "runs at a time on this host")->capture_default_str();
   mc->add_option("--out", o->out, "campaign directory (default runs/<name>-mc-<time>)");

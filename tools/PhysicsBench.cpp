@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+#include "bus/InstallPaths.hpp"
 #include "tools/PhysicsBench.hpp"
 
 #include <algorithm>
@@ -26,17 +27,15 @@ constexpr int kBatches = 5;
 constexpr int kFieldEvaluations = 20000;
 constexpr double kFlight_s = 2000.0;
 
-// The first of `dir/relative` over the source and the installed trees that exists.
-std::string firstExisting(const std::string& relative, const char* source_dir, const char* install_dir) {
-  for (const std::string dir : {source_dir, install_dir}) {
-    if (std::filesystem::exists(dir + "/" + relative)) return dir + "/" + relative;
-  }
-  throw std::runtime_error("no " + relative + " under " + source_dir + " or " + install_dir);
+// The first of `dir/relative` over the installed folders that exists.
+std::string firstExisting(const std::string& relative, const std::vector<std::filesystem::path>& dirs) {
+  if (const auto found = bus::findIn(dirs, relative)) return found->string();
+  throw std::runtime_error("no " + relative + " under " + bus::listOfDirs(dirs));
 }
 
 double igrf13FieldMicroseconds() {
   const sim::SphericalHarmonicField igrf =
-      sim::igrf14(firstExisting("igrf/igrf14coeffs.txt", FLATSAT_SOURCE_DATA_DIR, FLATSAT_INSTALL_DATA_DIR), 2026.0);
+      sim::igrf14(firstExisting("igrf/igrf14coeffs.txt", bus::dataDirs()), 2026.0);
   if (igrf.coefficients().degree != 13) throw std::runtime_error("IGRF-14 at 2026.0 is not of degree 13");
   double best = std::numeric_limits<double>::infinity();
   for (int batch = 0; batch < kBatches; ++batch) {
@@ -47,7 +46,7 @@ double igrf13FieldMicroseconds() {
 
 double dynamicsStepMicroseconds() {
   const bus::Scenario scenario = bus::loadScenario(
-      firstExisting("default.yaml", FLATSAT_SOURCE_SCENARIO_DIR, FLATSAT_INSTALL_SCENARIO_DIR));
+      firstExisting("default.yaml", bus::scenarioDirs()));
   bus::ConfigProblems problems;
   const vehicle::Vehicle craft = vehicle::readVehicle(scenario, problems);
   const dynamics_server::DynamicsServerParams server = dynamics_server::readParams(scenario, craft, {scenario.file, "dynamics_server", ""}, problems);

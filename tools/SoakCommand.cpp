@@ -1,4 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
+#include "tools/ScenarioName.hpp"
+#include "bus/InstallPaths.hpp"
 #include "tools/SoakCommand.hpp"
 
 #include <signal.h>
@@ -37,7 +39,7 @@ namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
 struct SoakOptions {
-  std::string scenario = FLATSAT_SOURCE_SCENARIO_DIR "/default.yaml";
+  std::string scenario = bus::installedScenario("default.yaml");
   double minutes = 10.0;                    // [min] run length, > 1
   std::vector<double> kill_every_s{3, 8};   // [s] MIN MAX between kills
   std::uint64_t seed = 1;
@@ -281,7 +283,7 @@ int runSoak(const SoakOptions& o) {
 CLI::App* addSoakCommand(CLI::App& app, int& exit_code) {
   auto o = std::make_shared<SoakOptions>();
   auto* soak = app.add_subcommand("soak", "paced run with random SIGKILL/restart of components, then checks");
-  soak->add_option("scenario", o->scenario, "scenario")->capture_default_str();
+  soak->add_option("scenario", o->scenario, "scenario file or name")->transform(scenarioByName())->capture_default_str();
   soak->add_option("--minutes", o->minutes, "run length [min], >= 1")->capture_default_str();
   soak->add_option("--kill-every-s", o->kill_every_s, "seconds between kills: MIN MAX")->expected(2);
   soak->add_option("--seed", o->seed, "seed of the kill times and victims")->capture_default_str();

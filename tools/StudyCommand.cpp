@@ -1,4 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
+#include "tools/ScenarioName.hpp"
+#include "bus/InstallPaths.hpp"
 #include "tools/StudyCommand.hpp"
 
 #include <algorithm>
@@ -35,7 +37,7 @@ namespace fs = std::filesystem;
 namespace ts = thruster_sequencer;
 
 struct StudyOptions {
-  std::string scenario = FLATSAT_SOURCE_SCENARIO_DIR "/s1_example.yaml";
+  std::string scenario = bus::installedScenario("s1_example.yaml");
   std::vector<std::string> overrides;
   int cases = 200;
   std::uint64_t seed = 20260320;
@@ -123,7 +125,7 @@ CLI::App* addStudyCommand(CLI::App& app, int& exit_code) {
   auto* study = app.add_subcommand("study", "algorithm-level studies that print tables");
   study->require_subcommand(1);
   auto* s1 = study->add_subcommand("s1", "S1 angle-only limit cycle: seeded initial angles and rates, settle statistics");
-  s1->add_option("scenario", options->scenario, "scenario with a thruster_sequencer")->capture_default_str();
+  s1->add_option("scenario", options->scenario, "scenario with a thruster_sequencer")->transform(scenarioByName())->capture_default_str();
   s1->add_option("--set", options->overrides, "override a scenario key: key.path=value");
   s1->add_option("--cases", options->cases, "cases per disturbance")->capture_default_str();
   s1->add_option("--seed", options->seed, "random seed of the cases")->capture_default_str();
@@ -135,9 +137,9 @@ CLI::App* addStudyCommand(CLI::App& app, int& exit_code) {
   s1->callback([options, &exit_code] { exit_code = runStudy(*options); });
 
   auto s0_options = std::make_shared<FieldFromMomentumStudyOptions>();
-  s0_options->scenario = std::string(FLATSAT_SOURCE_SCENARIO_DIR) + "/s0_no_magnetometer.yaml";
+  s0_options->scenario = bus::installedScenario("s0_no_magnetometer.yaml");
   auto* s0 = study->add_subcommand("s0", "S0 field and roll accuracy over window lengths and dipoles");
-  s0->add_option("scenario", s0_options->scenario, "scenario (plant, sensors, attitude loop)")->capture_default_str();
+  s0->add_option("scenario", s0_options->scenario, "scenario (plant, sensors, attitude loop)")->transform(scenarioByName())->capture_default_str();
   s0->add_option("--orbits", s0_options->orbits, "simulated orbits per case")->capture_default_str();
   s0->add_option("--cycle-s", s0_options->cycle_s, "seconds from one window to the next")->capture_default_str();
   s0->add_option("--form", s0_options->form, "one case only: seed | settle | settle+q | total+q");

@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+#include "bus/InstallPaths.hpp"
 #include "tools/ToolBus.hpp"
 
 #include <sstream>
@@ -23,11 +24,9 @@ namespace {
 
 /// The default scenario's domain, so `flatsat run` and a bare tool meet.
 std::uint32_t defaultScenarioDomain() {
-  for (const char* candidate : {FLATSAT_SOURCE_SCENARIO_DIR "/default.yaml",
-                                FLATSAT_INSTALL_SCENARIO_DIR "/default.yaml"}) {
-    if (!std::filesystem::exists(candidate)) continue;
+  if (const auto candidate = bus::findIn(bus::scenarioDirs(), "default.yaml")) {
     try {
-      return bus::loadScenario(candidate).domain_id;
+      return bus::loadScenario(candidate->string()).domain_id;
     } catch (const std::exception&) {
       // an unreadable default scenario is not this tool's problem
     }

@@ -17,6 +17,9 @@
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
+#include "bus/InstallPaths.hpp"
+#include "bus/NearestName.hpp"
+#include "bus/ScenarioPlaces.hpp"
 #include "bus/Security.hpp"
 #include "bus/Shutdown.hpp"
 #include "components/Registry.hpp"
@@ -41,6 +44,8 @@
 #include "tools/PlotCommand.hpp"
 #include "analysis/Quantile.hpp"
 #include "tools/RecordCommand.hpp"
+#include "tools/ScenarioName.hpp"
+#include "tools/ScenariosCommand.hpp"
 #include "tools/ReplayCommand.hpp"
 #include "rig/Resume.hpp"
 #include "rig/RunDirectory.hpp"
@@ -74,16 +79,32 @@ bool loadChecked(const std::string& file, const std::string& out_dir, bus::Scena
   auto told = [&](const std::string& problem) {
     return origin ? rig::attributeProblem(problem, file, origin->file, origin->overrides) : problem;
   };
+  const std::string header = (origin ? origin->file : file) + ": invalid scenario:";
   try {
     scenario = bus::loadScenario(file);
   } catch (const bus::ScenarioError& e) {
-    std::cerr << "error: " << told(e.what()) << "\n";
+    // One problem a line after a header line, or a single-line error.
+    std::istringstream lines(e.what());
+    std::string line;
+    std::getline(lines, line);
+    if (lines.eof()) {
+      std::cerr << "error: " << told(line) << "\n";
+      return false;
+    }
+    std::cerr << "error: " << header << "\n";
+    while (std::getline(lines, line)) {
+      if (const auto text = line.find_first_not_of(' '); text != std::string::npos) {
+        std::cerr << "  " << told(line.substr(text)) << "\n";
+      }
+    }
     return false;
   }
   const auto problems = checkScenario(scenario, out_dir.empty() ? "." : out_dir);
   if (problems.empty()) return true;
-  std::cerr << "error: " << (origin ? origin->file : file) << ": invalid scenario:\n";
-  for (const auto& p : problems) std::cerr << "  " << told(p) << "\n";
+  std::cerr << "error: " << header << "\n";
+  for (const auto& p : problems) {
+    std::cerr << "  " << (origin ? told(p) : bus::placeProblem(p, scenario.file, scenario.files)) << "\n";
+  }
   return false;
 }
 
@@ -95,10 +116,13 @@ std::optional<int> parseCommandLine(CLI::App& app, int argc, char** argv) {
   if (!first.empty() && first[0] != '-' &&
       app.get_subcommands([&](CLI::App* s) { return s->check_name(first); }).empty()) {
     std::string commands;
+    std::vector<std::string> names;
     for (const auto* sub : app.get_subcommands([](CLI::App* s) { return !s->get_group().empty(); })) {
       commands += (commands.empty() ? "" : ", ") + sub->get_name();
+      names.push_back(sub->get_name());
     }
-    std::cerr << "error: unknown command '" << argv[1] << "'; the commands: " << commands
+    std::cerr << "error: unknown command '" << argv[1] << "'" << bus::didYouMean(first, names)
+              << "; the commands: " << commands
               << "\nRun 'flatsat --help' for what each does.\n";
     return kExitBadInput;
   }
@@ -434,13 +458,7 @@ int run(const RunOptions& o, nlohmann::ordered_json* summary_out = nullptr) {
   return completed && intruders == 0 ? 0 : kExitFailed;
 }
 
-std::string defaultScenario() {
-  for (const char* candidate : {FLATSAT_SOURCE_SCENARIO_DIR "/default.yaml",
-                                FLATSAT_INSTALL_SCENARIO_DIR "/default.yaml"}) {
-    if (fs::exists(candidate)) return candidate;
-  }
-  return "deploy/scenarios/default.yaml";
-}
+std::string defaultScenario() { return bus::installedScenario("default.yaml"); }
 
 /// The rig paced at 100 Hz for paced_s of wall time, recorder on: how evenly
 /// its ticks come (the target: p99 lateness <= 200 µs, no missed step).
@@ -667,7 +685,9 @@ int main(int argc, char** argv) {
 
   RunOptions run_options;
   auto* run_cmd = app.add_subcommand("run", "run a scenario: every component its own process");
-  run_cmd->add_option("scenario", run_options.scenario, "scenario file (YAML)")->required();
+  run_cmd->add_option("scenario", run_options.scenario, "scenario file (YAML) or name (flatsat scenarios)")
+      ->required()
+      ->transform(tools::scenarioByName());
   run_cmd->add_option("--out", run_options.out, "run directory (default runs/<name>-<time>)");
   run_cmd->add_option("--set", run_options.overrides, "override a scenario key: key.path=value");
   run_cmd->add_option("--log", run_options.log_level, "components' log level");
@@ -700,14 +720,15 @@ int main(int argc, char** argv) {
   auto* check_cmd = app.add_subcommand(
       "check", "check a scenario without running it: file:line:col, key and reason per problem");
   check_cmd->alias("validate");
-  check_cmd->add_option("scenario", check_file, "scenario file (YAML)")->required();
+  check_cmd->add_option("scenario", check_file, "scenario file (YAML) or name")->required()->transform(tools::scenarioByName());
   std::vector<std::string> check_overrides;
   check_cmd->add_option("--set", check_overrides, "override a scenario key, as flatsat run does: key.path=value");
 
   std::string bench_scenario = defaultScenario();
   double bench_duration_s = 600.0;
   auto* bench_cmd = app.add_subcommand("bench", "measure the lockstep rig; prints key=value");
-  bench_cmd->add_option("scenario", bench_scenario, "scenario file (default: the default rig)");
+  bench_cmd->add_option("scenario", bench_scenario, "scenario file or name (default: the default rig)")
+      ->transform(tools::scenarioByName());
   bench_cmd->add_option("--duration-s", bench_duration_s, "simulated seconds to run");
   bool bench_quick = false;
   bench_cmd->add_flag("--quick", bench_quick, "the paced run lasts 30 s instead of 60 s, fewer hops and bare-graph steps");
@@ -739,6 +760,7 @@ int main(int argc, char** argv) {
       tools::addCmdCommand(app, tool_exit),    tools::addFoxgloveCommand(app, tool_exit)};
   for (auto* peer : tools::addBenchPeerCommands(app, tool_exit)) tool_cmds.push_back(peer);
   tool_cmds.push_back(tools::addGrantsCommand(app, tool_exit));
+  tool_cmds.push_back(tools::addScenariosCommand(app, tool_exit));
 
   auto* clean_cmd = app.add_subcommand(
       "clean-shm", "remove Fast DDS shared-memory files no live process uses");

@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+#include "bus/InstallPaths.hpp"
 #include "vehicle/VehicleReader.hpp"
 
 #include <cmath>
@@ -23,14 +24,7 @@ namespace {
 namespace fs = std::filesystem;
 
 std::string findDataFile(const bus::Scenario& scenario, const std::string& name) {
-  const fs::path given(name);
-  if (given.is_absolute()) return name;
-  const fs::path beside = fs::path(scenario.file).parent_path() / given;
-  if (fs::exists(beside)) return beside.string();
-  for (const char* dir : {FLATSAT_SOURCE_DATA_DIR, FLATSAT_INSTALL_DATA_DIR}) {
-    if (fs::exists(fs::path(dir) / given)) return (fs::path(dir) / given).string();
-  }
-  return name;
+  return bus::findBesideOrIn(scenario.file, name, bus::dataDirs());
 }
 
 /// orbit.propagator, orbit.step_s and the force switches orbit.forces.*; the
@@ -73,6 +67,8 @@ void readElements(bus::ParamReader& orbit, sim::OrbitElements& elements) {
   orbit.read("semi_major_axis_m", elements.semi_major_axis_m, "m");
   if (orbit.has("altitude_m") && orbit.has("semi_major_axis_m")) {
     orbit.problem("", "give altitude_m (circular) or semi_major_axis_m, not both");
+  } else if (orbit.failed("altitude_m")) {
+    orbit.excuse("semi_major_axis_m");
   } else if (orbit.has("altitude_m")) {
     elements.semi_major_axis_m = sim::kEarthEquatorialRadius_m + altitude_m;
   }

@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
+#include "bus/InstallPaths.hpp"
 #include "components/device_protocol/DeviceProtocol.hpp"
 
 #include <cctype>
@@ -195,15 +196,7 @@ std::vector<std::string> LineSettings::validate() const {
 }
 
 std::string findDeviceDescription(const std::string& scenario_file, const std::string& name) {
-  namespace fs = std::filesystem;
-  const fs::path given(name);
-  if (given.is_absolute()) return name;
-  const fs::path beside = fs::path(scenario_file).parent_path() / given;
-  if (fs::exists(beside)) return beside.string();
-  for (const char* dir : {FLATSAT_SOURCE_DEVICES_DIR, FLATSAT_INSTALL_DEVICES_DIR}) {
-    if (fs::exists(fs::path(dir) / given)) return (fs::path(dir) / given).string();
-  }
-  return name;
+  return bus::findBesideOrIn(scenario_file, name, bus::deviceDirs());
 }
 
 DeviceProtocol readDeviceProtocol(const std::string& path, const FieldUnitLookup& unit_of, bus::ConfigProblems& problems) {

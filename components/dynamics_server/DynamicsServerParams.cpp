@@ -2,6 +2,7 @@
 #include "components/dynamics_server/DynamicsServerParams.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -171,7 +172,16 @@ DynamicsServerParams readParams(const bus::Scenario& scenario, const vehicle::Ve
   const double duration_s = scenario.duration_s > 0
                                 ? scenario.duration_s
                                 : scenario.duration_orbits * params.orbit_period_s;
-  params.final_step = static_cast<std::uint64_t>(std::llround(duration_s / scenario.step_s));
+  const double steps = duration_s / scenario.step_s;
+  if (!(steps <= bus::kMaxRunSteps)) {  // also a NaN from an orbit that failed its own checks
+    if (p.orbit.validate().empty()) {
+      char text[96];
+      std::snprintf(text, sizeof text, "%.3g steps of %g s: more than a run steps (1e9)", steps, scenario.step_s);
+      problems.add(scenario.file + ": " + (scenario.duration_s > 0 ? "duration_s" : "duration_orbits") + ": " + text);
+    }
+    return params;
+  }
+  params.final_step = static_cast<std::uint64_t>(std::llround(steps));
   return params;
 }
 

@@ -7,7 +7,7 @@
 # Does nothing when IMAGE exists. The Dockerfile takes it as
 # --build-arg BASE=IMAGE; with a registry, BASE defaults to debian:bookworm-slim.
 # Environment: FLATSAT_DEBIAN_MIRROR (default: the first http(s) archive in
-# this machine's apt sources; there is no other), DOCKER.
+# this machine's apt sources, deploy/debian-mirror.sh; there is no other), DOCKER.
 set -euo pipefail
 image="${1:-flatsat-base:bookworm}"
 docker="${DOCKER:-docker}"
@@ -22,17 +22,7 @@ command -v debootstrap >/dev/null || {
   echo "$0: debootstrap is missing (apt-get install debootstrap)" >&2
   exit 2
 }
-mirror="${FLATSAT_DEBIAN_MIRROR:-}"
-if [ -z "$mirror" ]; then
-  # The archive this machine already installs from: the only one it may reach.
-  mirror=$(grep -hoE '^(URIs:|deb) +https?://[^ ]+/debian/?( |$)' /etc/apt/sources.list \
-             /etc/apt/sources.list.d/*.list /etc/apt/sources.list.d/*.sources 2>/dev/null |
-           grep -oE 'https?://[^ ]+' | head -n1 || true)
-  if [ -z "$mirror" ]; then
-    echo "$0: no http(s) Debian archive in /etc/apt/sources.list{,.d/*}: set FLATSAT_DEBIAN_MIRROR" >&2
-    exit 2
-  fi
-fi
+mirror=$(bash "$(dirname "${BASH_SOURCE[0]}")/../debian-mirror.sh")
 root=$(mktemp -d /tmp/flatsat-base.XXXXXX)
 trap 'rm -rf "$root"' EXIT
 echo "make-base: debootstrap bookworm from $mirror" >&2

@@ -152,7 +152,10 @@ TEST_CASE("a command-line error exits 2 with the error and the command's usage, 
                         Case{"export x --csv --json", "error: --csv excludes --json", "Usage: flatsat export"},
                         Case{"mc --runs", "error: --runs: 1 required INT missing", "Usage: flatsat mc"},
                         Case{"info --no-such-flag x", "error: The following argument was not expected: --no-such-flag",
-                             "Usage: flatsat info"}}) {
+                             "Usage: flatsat info"},
+                        Case{"rn default", "error: unknown command 'rn' (did you mean 'run'?)", ""},
+                        Case{"run nonesuch", "nonesuch: no such file here, and no scenario of that name in ",
+                             "Usage: flatsat run [OPTIONS] scenario"}}) {
     CAPTURE(c.args);
     const auto result = test::runCommand(kFlatsat + " " + c.args);
     INFO(result.output);
@@ -163,6 +166,44 @@ TEST_CASE("a command-line error exits 2 with the error and the command's usage, 
   const auto version = test::runCommand(kFlatsat + " --version");
   CHECK(version.exit_code == 0);
   CHECK(version.output.rfind("0.1.0", 0) == 0);
+  // A component's own command line too.
+  const auto component = test::runCommand(std::string(FLATSAT_BIN_DIR) + "/flatsat-gyro --no-such-flag");
+  INFO(component.output);
+  CHECK(component.exit_code == 2);
+  CHECK(test::runCommand(std::string(FLATSAT_BIN_DIR) + "/flatsat-gyro --version").output == version.output);
+}
+
+TEST_CASE("a scenario is named as flatsat scenarios lists it, and check places each problem at its line",
+          "[system][tools]") {
+  const auto listed = test::runCommand(kFlatsat + " scenarios");
+  INFO(listed.output);
+  CHECK(listed.exit_code == 0);
+  CHECK(listed.output.find("  default                      ROSAT-like Sun pointing") != std::string::npos);
+  const auto by_name = test::runCommand(kFlatsat + " check default");
+  INFO(by_name.output);
+  CHECK(by_name.exit_code == 0);
+  CHECK(by_name.output.find("/share/flatsat/scenarios/default.yaml: ok (9 components)") != std::string::npos);
+
+  const std::string dir = test::freshDir("check-places");
+  fs::create_directories(dir);
+  const std::string mine = dir + "/mine.yaml";
+  std::ofstream(mine) << "base: default\nname: mine\ncomponents:\n  gyroo: {}\n";
+  const auto typo = test::runCommand(kFlatsat + " check " + mine);
+  INFO(typo.output);
+  CHECK(typo.exit_code == 2);
+  CHECK(typo.output.find(mine + ":4:10: components.gyroo: unknown component (did you mean 'gyro'?)") !=
+        std::string::npos);
+  const auto both = test::runCommand(kFlatsat + " validate default --set duration_s=10");
+  INFO(both.output);
+  CHECK(both.exit_code == 2);
+  CHECK(both.output.find("--set duration_s=10: duration_s: give duration_s or duration_orbits, not both (to run by "
+                         "time, also set `duration_orbits: null`, or --set duration_orbits=null)") != std::string::npos);
+  const auto steps = test::runCommand(kFlatsat + " validate default --set duration_orbits=null --set duration_s=3e8");
+  INFO(steps.output);
+  CHECK(steps.exit_code == 2);
+  CHECK(steps.output.find("--set duration_s=3e8: duration_s: 3e+09 steps of 0.1 s: more than a run steps (1e9)") !=
+        std::string::npos);
+  fs::remove_all(dir);
 }
 
 TEST_CASE("validate takes --set as run does, a problem of a --set is told at the --set, and a run refused "

@@ -241,3 +241,14 @@ TEST_CASE("onboard.field_epoch_utc: the onboard coefficients as evaluated years 
   vehicle::readVehicle(over.load("bad_date.yaml", "onboard: {field_epoch_utc: 'last spring'}\n"), bad);
   CHECK(anyContains(bad.list(), "onboard.field_epoch_utc:"));
 }
+
+TEST_CASE("a misread altitude is one problem, not a second about the semi-major axis it would set", "[vehicle]") {
+  const OverDefault over;
+  const auto scenario = over.load("unit.yaml", "orbit:\n  altitude_m: 560 deg\n");
+  bus::ConfigProblems problems;
+  vehicle::readVehicle(scenario, problems);
+  INFO(problems.joined());
+  CHECK(anyContains(problems.list(), "orbit.altitude_m: wrong unit 'deg'"));
+  CHECK_FALSE(anyContains(problems.list(), "semi_major_axis_m"));
+  CHECK(problems.list().size() == 1);
+}
