@@ -190,6 +190,7 @@ void Node::publishHealth(msg::ComponentState state, std::uint64_t steps_done,
           .count()));
   setText(health.message(), message);
   health.step_reached(step_reached_);
+  health.step_granted(std::max(newestGrant(), step_reached_));
   std::uint64_t copies = 0;
   for (const auto& input : inputs_) copies += input->copiesDropped();
   health.copies_dropped(copies);

@@ -81,6 +81,9 @@ inline constexpr TopicDef<ParamCmd, ParamCmdPubSubType> kParamCmd{
     "flatsat/param_cmd", QosKind::kCommand, ""};
 inline constexpr TopicDef<CommandAck, CommandAckPubSubType> kCommandAck{
     "flatsat/command_ack", QosKind::kCommand, ""};
+/// Not recorded: the settable parameters' values now (param_cmd and command_ack record every change).
+inline constexpr TopicDef<ParamState, ParamStatePubSubType> kParamState{
+    "flatsat/param_state", QosKind::kState, ""};
 }  // namespace topics
 
 /// Calls f(def) for every topic of the registry (recorder, tools).
@@ -92,7 +95,7 @@ void forEachTopic(F&& f) {
   f(kFaultCmd); f(kFaultEvent); f(kFieldEstimate); f(kCoilRequest); f(kCoilWindow);
   f(kThrusterCmd);
   f(kUnloadingModeCmd); f(kParamCmd); f(kCommandAck);
-  f(kStarTracker); f(kFlapCmd); f(kBusDelivery); f(kStationKeepingPlan);
+  f(kStarTracker); f(kFlapCmd); f(kBusDelivery); f(kStationKeepingPlan); f(kParamState);
 }
 
 /// Whether `name` is a stepped topic of the registry (a bus fault's target).

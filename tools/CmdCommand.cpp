@@ -219,16 +219,20 @@ CLI::App* addCmdCommand(CLI::App& app, int& exit_code) {
   param->add_option("value", o->value, "new value, in the unit the key names")->required();
   common(param);
   param->callback([o, &exit_code] {
-    runReportingErrors(exit_code, [&] {
-      msg::ParamCmd command;
-      bus::setText(command.target(), o->target);
-      bus::setText(command.key(), o->key);
-      command.value(o->value);
-      return send(bus::topics::kParamCmd, command,
-                  "param " + o->target + "." + o->key + " = " + shortNumber(o->value), *o);
-    });
+    runReportingErrors(exit_code, [&] { return sendParamCommand(o->target, o->key, o->value, o->timeout_s, o->domain); });
   });
   return cmd;
+}
+
+int sendParamCommand(const std::string& target, const std::string& key, double value, double timeout_s, int domain) {
+  CmdOptions o;
+  o.timeout_s = timeout_s;
+  o.domain = domain;
+  msg::ParamCmd command;
+  bus::setText(command.target(), target);
+  bus::setText(command.key(), key);
+  command.value(value);
+  return send(bus::topics::kParamCmd, command, "param " + target + "." + key + " = " + shortNumber(value), o);
 }
 
 }  // namespace flatsat::tools

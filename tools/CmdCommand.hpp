@@ -10,4 +10,8 @@ namespace flatsat::tools {
 /// 2 bad input.
 CLI::App* addCmdCommand(CLI::App& app, int& exit_code);
 
+/// `flatsat cmd param TARGET KEY VALUE` (also `flatsat param set`): the same
+/// exit codes.
+int sendParamCommand(const std::string& target, const std::string& key, double value, double timeout_s, int domain);
+
 }  // namespace flatsat::tools

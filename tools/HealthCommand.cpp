@@ -159,8 +159,8 @@ CLI::App* addHealthCommand(CLI::App& app, int& exit_code) {
   addDomainOption(*cmd, options->domain);
   cmd->footer(
       "Refreshed every second until Ctrl-C; the first table comes once every component\n"
-      "discovery found has reported (at most --wait). LAG is how many steps a component's last\n"
-      "health is behind the one furthest ahead (the time master); AGE is the time since the component\n"
+      "discovery found has reported (at most --wait). LAG is how many granted steps a component had\n"
+      "not yet handled when it stamped its last health (the time master: 0); AGE is the time since the component\n"
       "stamped its last health (wall clock; a running component reports every second);\n"
       "OVERRUNS and STALE count the paced steps it skipped or took with an old input.\n"
       "(gone): the component's participant left the bus.");

@@ -54,9 +54,6 @@ HealthWatcher::HealthWatcher(ToolBus& tool_bus, std::mutex& mutex, std::map<std:
 
 nlohmann::ordered_json healthTable(const std::map<std::string, HealthEntry>& entries, const ToolBus& tool_bus) {
   const auto participants = tool_bus.participants();
-  // Lag: steps behind the component furthest ahead (the time master grants first).
-  std::uint64_t ahead = 0;
-  for (const auto& [name, e] : entries) ahead = std::max<std::uint64_t>(ahead, e.health.step_reached());
   auto rows = nlohmann::ordered_json::array();
   for (const auto& [name, e] : entries) {
     const auto p = participants.find(e.writer.guidPrefix);
@@ -65,7 +62,9 @@ nlohmann::ordered_json healthTable(const std::map<std::string, HealthEntry>& ent
     rows.push_back({{"component", name},
                     {"state", msg::toJson(e.health.state())},
                     {"steps_done", e.health.steps_done()},
-                    {"lag_steps", ahead - e.health.step_reached()},
+                    // Both of the moment the component stamped its health: healths of
+                    // different moments (a second apart) are not comparable.
+                    {"lag_steps", e.health.step_granted() - std::min(e.health.step_reached(), e.health.step_granted())},
                     {"overruns", overruns(e.health)},
                     {"stale_inputs", staleInputs(e.health)},
                     {"samples_dropped", e.health.samples_dropped()},

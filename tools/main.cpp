@@ -40,6 +40,7 @@
 #include "tools/MiddlewareBench.hpp"
 #include "tools/PlainGraphBench.hpp"
 #include "tools/OrbitCommand.hpp"
+#include "tools/ParamCommand.hpp"
 #include "tools/PhysicsBench.hpp"
 #include "tools/PlotCommand.hpp"
 #include "analysis/Quantile.hpp"
@@ -757,7 +758,8 @@ int main(int argc, char** argv) {
       tools::addExportCommand(app, tool_exit), tools::addInfoCommand(app, tool_exit),
       tools::addPlotCommand(app, tool_exit),
       tools::addRecordCommand(app, tool_exit), tools::addReplayCommand(app, tool_exit),
-      tools::addCmdCommand(app, tool_exit),    tools::addFoxgloveCommand(app, tool_exit)};
+      tools::addCmdCommand(app, tool_exit),    tools::addParamCommand(app, tool_exit),
+      tools::addFoxgloveCommand(app, tool_exit)};
   for (auto* peer : tools::addBenchPeerCommands(app, tool_exit)) tool_cmds.push_back(peer);
   tool_cmds.push_back(tools::addGrantsCommand(app, tool_exit));
   tool_cmds.push_back(tools::addScenariosCommand(app, tool_exit));

@@ -46,7 +46,7 @@ AttitudeControllerNode::AttitudeControllerNode(bus::Bus& bus, bus::NodeOptions o
 void AttitudeControllerNode::step(const bus::StepContext& ctx) {
   // The law's plain numbers are settable; the wheel geometry and the axis stay fixed.
   if (auto changed = params_.take(controller_.params(), [](const SunPointingControllerParams& p) { return p.validate(); },
-                                  acks_)) {
+                                  acks_, ctx)) {
     controller_ = SunPointingController(*changed);
   }
   acks_.publish(ctx, name());

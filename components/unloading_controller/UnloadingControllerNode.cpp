@@ -185,7 +185,7 @@ void UnloadingControllerNode::step(const bus::StepContext& ctx) {
     }
   }
   if (auto retuned = param_commands_.take(modes_.params(), [](const MagneticModesParams& p) { return p.validate(); },
-                                          acks_)) {
+                                          acks_, ctx)) {
     modes_.retune(*retuned);
   }
   acks_.publish(ctx, name());
