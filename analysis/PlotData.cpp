@@ -156,6 +156,19 @@ PlotData readPlotData(const std::string& recording_path, const PlotContext& cont
     }
     if (r.total_on_time_s > 0 || r.pulse != 0) d.thruster.push_back(r);
   });
+  forEachSample<bus::topics::kFaultEvent>(recording, [&](std::uint64_t, const msg::FaultEvent& s) {
+    std::string topic = bus::text(s.topic());
+    if (topic.rfind("flatsat/", 0) == 0) topic.erase(0, 8);
+    d.events.push_back({seconds(s.header().sim_time_ns()),
+                        "fault " + bus::text(s.header().source()) + " " + bus::text(s.kind()) +
+                            (topic.empty() ? "" : " " + topic) + (s.active() ? " on" : " off")});
+  });
+  forEachSample<bus::topics::kCommandAck>(recording, [&](std::uint64_t, const msg::CommandAck& s) {
+    if (!s.accepted()) return;  // a refused command changed nothing
+    d.events.push_back({seconds(s.header().sim_time_ns()), bus::text(s.command()) + " " + bus::text(s.reason())});
+  });
+  std::stable_sort(d.events.begin(), d.events.end(),
+                   [](const EventRow& a, const EventRow& b) { return a.t_s < b.t_s; });
   return d;
 }
 

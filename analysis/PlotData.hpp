@@ -71,6 +71,14 @@ struct DipoleRow {
   bool active;
 };
 
+/// Something that happened at a moment of the run, marked on every time plot:
+/// a fault beginning or ending (flatsat/fault_event), an operator command a
+/// component accepted (flatsat/command_ack).
+struct EventRow {
+  double t_s;
+  std::string label;  ///< short: "fault gyro bias on", "param kp_Nm_per_rad = 0.9"
+};
+
 struct PlotData {
   /// Where TruthRow's latitude comes from: the truth's own geodetic
   /// sub-satellite point, else the inertial position rotated by GMST
@@ -85,6 +93,7 @@ struct PlotData {
   std::vector<ThrusterRow> thruster;  ///< firing steps only: pulses are sparse
   std::size_t thruster_count = 0;
   bool estimate_covariance = false;  ///< some estimate carries its covariance
+  std::vector<EventRow> events;      ///< in time order
 };
 
 PlotData readPlotData(const std::string& recording_path, const PlotContext& context);

@@ -26,6 +26,7 @@ namespace flatsat::tools {
 
 using analysis::DipoleRow;
 using analysis::EstimateRow;
+using analysis::EventRow;
 using analysis::MagnetometerRow;
 using analysis::PlotContext;
 using analysis::PlotData;
@@ -84,15 +85,63 @@ struct FigureScript {
   TimeAxis ta;
   std::vector<std::string> pngs;
 
+  const std::vector<EventRow>* events = nullptr;
+
   std::string dat(const char* name) const { return quoted(data / name); }
-  /// Starts a figure: fixed margins, so the panels of one figure line up whatever their legends.
-  void begin(const std::string& png, const std::string& title) {
+  /// Starts a figure: fixed side margins, so the panels of one figure line up;
+  /// the legend above each panel, where it covers no data and stays in the
+  /// frame whatever its length (below, gnuplot 5.4 sets it over the axis
+  /// label); the run's events marked on a time axis.
+  void begin(const std::string& png, const std::string& title, bool time_axis = true) {
     pngs.push_back(png);
     s << "\nreset\nset output " << quoted(out / png)
-      << "\nset grid\nset key outside right top box Left reverse width 1\nset lmargin 12\nset rmargin 26\n"
+      << "\nset grid\nset key above horizontal box width 2\nset lmargin 12\nset rmargin 6\n"
       << "set xlabel '" << ta.label << "'\nset title \"" << title << "\"\n";
+    if (time_axis && events != nullptr) markEvents();
+  }
+
+  /// A dotted line per event, labelled at the top of the panel; a run with
+  /// many events gets lines only (their labels would overprint).
+  void markEvents() {
+    constexpr std::size_t kLabelledAtMost = 12;
+    for (const auto& e : *events) {
+      const double t = e.t_s * ta.scale;
+      s << "set arrow from " << t << ", graph 0 to " << t << ", graph 1 nohead dt 3 lw 1.2 lc rgb '#7a0177' front\n";
+      if (events->size() <= kLabelledAtMost) {
+        s << "set label " << quotedText(e.label.substr(0, 40)) << " at " << t
+          << ", graph 0.97 rotate by 90 right offset -0.6,0 font ',9' tc rgb '#7a0177' front\n";
+      }
+    }
+  }
+
+  /// Panels below one title; the title's blank line keeps the first row's legend (above it) off the title.
+  void multiplot(int rows, int columns, const std::string& title) {
+    s << "set multiplot layout " << rows << "," << columns << " title \"";
+    for (char ch : title) s << (ch == '"' || ch == '\\' ? "\\" : "") << ch;
+    s << "\\n\"\n";
+  }
+
+  static std::string quotedText(const std::string& text) {
+    std::string q = "'";
+    for (char ch : text) q += ch == '\'' ? std::string("''") : std::string(1, ch);
+    return q + "'";
   }
 };
+
+/// Twelve colours told apart by anyone (Tableau 10, then two dark ones), so
+/// the series of one figure (up to twelve thrusters) never share a colour.
+constexpr const char* kSeriesColours[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b",
+                                          "#e377c2", "#7f7f7f", "#bcbd22", "#17becf", "#000000", "#393b79"};
+
+/// `set yrange` that holds a constant series (gnuplot would widen [v:v] itself, with a warning).
+std::string rangeHolding(const std::vector<double>& values) {
+  if (values.empty()) return "set yrange [-1:1]\n";
+  const auto [lo, hi] = std::minmax_element(values.begin(), values.end());
+  if (*hi - *lo > 1e-12 * std::max(1.0, std::abs(*hi))) return "set autoscale y\n";
+  std::ostringstream r;
+  r << "set yrange [" << *lo - 1 << ":" << *hi + 1 << "]\n";
+  return r.str();
+}
 
 /// Data files (gnuplot/*.dat) of every figure, at most max_points rows each.
 void writeDataFiles(const PlotData& d, const PlotContext& c, const fs::path& data, const TimeAxis& ta,
@@ -187,8 +236,14 @@ void ratesFigure(FigureScript& f) {
 
 void wheelsFigure(FigureScript& f, const PlotData& d, const PlotContext& c) {
   f.begin("wheels.png", "Reaction wheels (truth)");
-  f.s << "set multiplot layout 2,1 title 'Reaction wheels (truth)'\nset title 'Wheel speeds relative to the body'\n"
-    << "set ylabel 'wheel speed [rad/s]'\nplot ";
+  std::vector<double> speeds, stored;
+  for (const auto& r : d.truth) {
+    speeds.insert(speeds.end(), r.wheel_rad_s.begin(), r.wheel_rad_s.begin() + std::max<std::size_t>(d.wheel_count, 1));
+    stored.push_back(r.h_wheels_Nms);
+  }
+  f.multiplot(2, 1, "Reaction wheels (truth)");
+  f.s << "set title 'Wheel speeds relative to the body'\n"
+    << rangeHolding(speeds) << "set ylabel 'wheel speed [rad/s]'\nplot ";
   for (std::size_t i = 0; i < std::max<std::size_t>(d.wheel_count, 1); ++i) {
     f.s << (i ? ", '' " : f.dat("truth.dat")) << " using 1:" << 6 + i << " with lines title 'wheel " << i + 1 << "'";
   }
@@ -198,7 +253,8 @@ void wheelsFigure(FigureScript& f, const PlotData& d, const PlotContext& c) {
   const bool capacity_line = c.wheel_capacity_Nms && h_max > 0.25 * *c.wheel_capacity_Nms;
   f.s << "\nset title 'Angular momentum stored in the wheels";
   if (c.wheel_capacity_Nms && !capacity_line) f.s << " (one wheel holds " << *c.wheel_capacity_Nms << " N·m·s)";
-  f.s << "'\nset ylabel '|h wheels| [N·m·s]'\nplot " << f.dat("truth.dat") << " using 1:10 with lines lw 2 title '|h| stored'";
+  f.s << "'\n" << (capacity_line ? "set autoscale y\n" : rangeHolding(stored))
+    << "set ylabel '|h wheels| [N·m·s]'\nplot " << f.dat("truth.dat") << " using 1:10 with lines lw 2 title '|h| stored'";
   if (capacity_line) f.s << ", " << *c.wheel_capacity_Nms << " with lines dt 2 lc rgb 'red' title 'one wheel capacity'";
   f.s << "\nunset multiplot\n";
 }
@@ -206,8 +262,8 @@ void wheelsFigure(FigureScript& f, const PlotData& d, const PlotContext& c) {
 void dipoleFigure(FigureScript& f, const PlotData& d, const PlotContext& c) {
   if (!d.dipole.empty()) {
     f.begin("dipole.png", "Magnetorquer dipole command (unloading controller)");
-    f.s << "set multiplot layout 2,1 title 'Magnetic unloading: dipole command and coil duty'\n"
-      << "set title 'Commanded dipole, body axes'\nset ylabel 'dipole [A·m²]'\nplot " << f.dat("dipole.dat")
+    f.multiplot(2, 1, "Magnetic unloading: dipole command and coil duty");
+    f.s << "set title 'Commanded dipole, body axes'\nset ylabel 'dipole [A·m²]'\nplot " << f.dat("dipole.dat")
       << " using 1:2 with steps title 'm x', '' using 1:3 with steps title 'm y', '' using 1:4 with steps title 'm z'\n";
     if (c.max_dipole_Am2) {
       f.s << "set title 'Coil duty: |m| over the coil limit'\nset ylabel 'duty [%]'\nset yrange [0:105]\nplot "
@@ -222,9 +278,9 @@ void dipoleFigure(FigureScript& f, const PlotData& d, const PlotContext& c) {
 
 void fieldFigure(FigureScript& f, const PlotData& d) {
   f.begin("field.png", "Geomagnetic field, body axes");
-  f.s << "set multiplot layout 2,2 title 'Geomagnetic field in body axes: true, measured (magnetometer), "
-       "true field seen through the estimated attitude'\nset key inside top right box opaque font ',10'\n"
-       "set rmargin -1\n";
+  f.multiplot(2, 2, "Geomagnetic field in body axes: true, measured (magnetometer), true field seen through the "
+                   "estimated attitude");
+  f.s << "set key font ',10'\n";
   for (int axis_index = 0; axis_index < 3; ++axis_index) {
     const char name = static_cast<char>('x' + axis_index);
     f.s << "set title 'body " << name << "'\nset ylabel 'B " << name << " [µT]'\nplot " << f.dat("truth.dat")
@@ -244,9 +300,9 @@ void estimatorFigure(FigureScript& f, const PlotData& d) {
   if (!d.estimate.empty()) {
     f.begin("estimator_error.png", "Attitude estimation error (estimate vs truth)");
     const bool bounds = d.estimate_covariance;
-    f.s << "set multiplot layout " << (bounds ? 4 : 2)
-      << ",1 title 'Attitude estimation error (estimate vs truth)" << (bounds ? " with the filter 3σ bounds" : "")
-      << "'\nset title 'Rotation angle between estimated and true attitude'\nset ylabel 'error angle [deg]'\nset logscale y\nplot "
+    f.multiplot(bounds ? 4 : 2, 1,
+                std::string("Attitude estimation error (estimate vs truth)") + (bounds ? " with the filter 3σ bounds" : ""));
+    f.s << "set title 'Rotation angle between estimated and true attitude'\nset ylabel 'error angle [deg]'\nset logscale y\nplot "
       << f.dat("estimate.dat") << " using 1:2 with lines title 'error angle'\nunset logscale y\n";
     if (bounds) {
       // One panel per axis: the error against ±3σ of the filter's covariance.
@@ -284,8 +340,8 @@ void thrusterFigure(FigureScript& f, const PlotData& d) {
     bool pulses = false;
     for (const auto& r : d.thruster) pulses |= r.pulse != 0;
     f.begin("thrusters.png", "Thruster firings (thruster sequencer)");
-    f.s << "set multiplot layout " << (pulses ? 3 : 2) << ",1 title 'Thruster firings (thruster sequencer)'\n"
-      << "set title 'Which thruster fired (one mark per firing step)'\nset ylabel 'thruster [-]'\n"
+    f.multiplot(pulses ? 3 : 2, 1, "Thruster firings (thruster sequencer)");
+    f.s << "set title 'Which thruster fired (one mark per firing step)'\nset ylabel 'thruster [-]'\n"
       << "set yrange [0.5:" << d.thruster_count + 0.5 << "]\nset ytics 1\nplot ";
     for (std::size_t i = 0; i < d.thruster_count; ++i) {
       f.s << (i ? ", '' " : f.dat("thruster.dat")) << " using 1:($" << 5 + i << " > 0 ? " << i + 1
@@ -306,13 +362,18 @@ void thrusterFigure(FigureScript& f, const PlotData& d) {
 void trackFigure(FigureScript& f, const PlotData& d) {
   if (d.track != PlotData::Track::kNone && !d.truth.empty()) {
     const bool geodetic = d.track == PlotData::Track::kGeodetic;
-    f.begin("ground_track.png", geodetic ? "Ground track (sub-satellite point, WGS-84, truth)"
-                                       : "Ground track (GMST rotation, spherical Earth)");
+    f.begin("ground_track.png",
+            geodetic ? "Ground track (sub-satellite point, WGS-84, truth)" : "Ground track (GMST rotation, spherical Earth)",
+            false);
+    bool sunlit = false, eclipsed = false;  // a dawn-dusk orbit has no eclipse: no empty series
+    for (const auto& r : d.truth) (r.illumination >= 0.5 ? sunlit : eclipsed) = true;
     f.s << "set xlabel 'longitude [deg]'\nset ylabel '" << (geodetic ? "geodetic" : "geocentric")
       << " latitude [deg]'\nset xrange [-180:180]\nset yrange [-90:90]\nset rmargin -1\n"
       << "set xtics 30\nset ytics 30\nset size ratio 0.5\nset key outside bottom center horizontal box\n"
-      << "plot " << f.dat("track_sun.dat") << " with lines lw 2 lc rgb '#ff9900' title 'sunlit', "
-      << f.dat("track_eclipse.dat") << " with lines lw 2 lc rgb '#1f3b73' title 'eclipse', '-' with points pt 7 ps 2 lc rgb 'black' title 'start'\n"
+      << "plot ";
+    if (sunlit) f.s << f.dat("track_sun.dat") << " with lines lw 2 lc rgb '#ff9900' title 'sunlit', ";
+    if (eclipsed) f.s << f.dat("track_eclipse.dat") << " with lines lw 2 lc rgb '#1f3b73' title 'eclipse', ";
+    f.s << "'-' with points pt 7 ps 2 lc rgb 'black' title 'start'\n"
       << d.truth.front().lon_deg << " " << d.truth.front().lat_deg << "\ne\n";
   }
 }
@@ -325,10 +386,15 @@ std::vector<std::string> writeScript(const PlotData& d, const PlotContext& c, co
   fs::create_directories(data);  // before the script opens: it may live there
   const TimeAxis ta = timeAxis(d);
   writeDataFiles(d, c, data, ta, max_points);  // first: a failure leaves no script behind
-  FigureScript f{std::ofstream(script), out, data, ta, {}};
+  FigureScript f{std::ofstream(script), out, data, ta, {}, &d.events};
   f.s << "# Generated by flatsat plot from " << d.truth.size() << " truth samples; rerun: gnuplot "
       << script.filename().string() << "\nset encoding utf8\n"
       << "set terminal pngcairo size 1400,850 noenhanced font 'DejaVu Sans,12' linewidth 1.5\n";
+  // Line types survive `reset`: every figure draws its series in these colours.
+  for (std::size_t i = 0; i < std::size(kSeriesColours); ++i) {
+    f.s << "set linetype " << i + 1 << " lc rgb '" << kSeriesColours[i] << "' lw 1 pt " << i + 1 << "\n";
+  }
+  f.s << "set linetype cycle " << std::size(kSeriesColours) << "\n";
   pointingFigure(f, d, c);
   ratesFigure(f);
   wheelsFigure(f, d, c);

@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 
 #include <filesystem>
+#include <fstream>
 
 #include "tests/support/Background.hpp"
 #include "tests/support/Rig.hpp"
@@ -52,4 +53,49 @@ TEST_CASE("run draws the figures by default: the filter's 3-sigma bounds around 
   const std::string data = test::readFile(thrusters / "gnuplot" / "thruster.dat");
   CHECK(std::count(data.begin(), data.end(), '\n') > 100);
   fs::remove_all(thrusters.parent_path());
+}
+
+TEST_CASE("the figures mark faults on the time axis, give every series its own colour, keep legends off the "
+          "data and say nothing on stderr",
+          "[system][tools][plot]") {
+  test::exportTestDomain();
+  const std::string run = test::freshDir("plot-events");
+  fs::create_directories(run);
+  const std::string scenario = run + "/events.yaml";
+  std::ofstream(scenario) << "base: " << FLATSAT_SCENARIO_DIR << "/default.yaml\nname: events\n"
+                          << "duration_orbits: null\nduration_s: 1800\n"
+                          << "spacecraft:\n  faults:\n"
+                          << "    - {kind: wheel_degraded, channel: 1, magnitude: 0.5, start_s: 600, duration_s: 300}\n"
+                          << "bus_faults:\n  - {kind: drop, topic: flatsat/sun_sensor, magnitude: 0.5, start_s: 300, "
+                             "duration_s: 120}\n";
+  // stderr alone: a successful run's figures add nothing to it (gnuplot's warnings once did).
+  const auto rig = test::runCommand(test::kFlatsat + " run " + scenario + " --composed -q --out " + run +
+                                    "/run 2>&1 >/dev/null");
+  INFO(rig.output);
+  REQUIRE(rig.exit_code == 0);
+  CHECK(rig.output.empty());
+  const std::string script = test::readFile(fs::path(run) / "run" / "plots" / "gnuplot" / "plots.gp");
+  // 1800 s runs on a minute axis: the faults at 5, 7, 10 and 15 min, on each of the six time figures.
+  for (const char* mark : {"set arrow from 5, graph 0", "set arrow from 7, graph 0", "set arrow from 10, graph 0",
+                           "set arrow from 15, graph 0"}) {
+    CAPTURE(mark);
+    std::size_t count = 0;
+    for (auto at = script.find(mark); at != std::string::npos; at = script.find(mark, at + 1)) ++count;
+    CHECK(count == 6);
+  }
+  CHECK(script.find("'fault dynamics_server wheel_degraded on'") != std::string::npos);
+  CHECK(script.find("'fault bus drop sun_sensor off'") != std::string::npos);
+  CHECK(script.find("set linetype 12 lc rgb '#393b79'") != std::string::npos);
+  CHECK(script.find("set linetype cycle 12") != std::string::npos);
+  CHECK(script.find("key inside") == std::string::npos);
+  CHECK(script.find("key outside right") == std::string::npos);
+
+  // A dawn-dusk orbit never enters eclipse: no empty series to plot, no warning.
+  const auto detumble = test::runCommand(test::kFlatsat + " run " + std::string(FLATSAT_SCENARIO_DIR) +
+                                         "/detumble.yaml --composed -q --out " + run + "/detumble" +
+                                         " --set duration_orbits=null --set duration_s=600 2>&1 >/dev/null");
+  INFO(detumble.output);
+  CHECK(detumble.exit_code == 0);
+  CHECK(detumble.output.empty());
+  fs::remove_all(run);
 }
