@@ -73,6 +73,9 @@ int runOrbit(const OrbitOptions& o) {
   if (!readTles(o, tles)) return kExitBadInput;
 
   int status = 0;
+  std::size_t stopped = 0;
+  // Then per set Vallado's tcppver.out layout: "<catalogue number> xx", a row per time.
+  std::printf("# t [min after epoch], r x y z [km], v x y z [km/s]: SGP4, TEME frame\n");
   for (const sim::Tle& tle : tles) {
     std::printf("%d xx\n", tle.catalog_number);
     const sim::Sgp4 sgp4(tle);
@@ -82,6 +85,7 @@ int runOrbit(const OrbitOptions& o) {
       if (!s.ok()) {
         std::cerr << "error: catalogue number " << tle.catalog_number << " at " << t << " min: " << s.message << "\n";
         status = kExitPropagationError;
+        ++stopped;
         break;
       }
       std::printf(" %16.8f %16.8f %16.8f %16.8f %12.9f %12.9f %12.9f\n", t, s.r_T_km.x(), s.r_T_km.y(), s.r_T_km.z(),
@@ -92,6 +96,10 @@ int runOrbit(const OrbitOptions& o) {
     }
   }
   std::fflush(stdout);
+  if (stopped > 0) {
+    std::cerr << "flatsat orbit: " << stopped << " of " << tles.size()
+              << " element sets stopped early at an SGP4 error (above); exit status " << status << "\n";
+  }
   return status;
 }
 

@@ -69,8 +69,8 @@ TEST_CASE("the figures mark faults on the time axis, give every series its own c
                           << "bus_faults:\n  - {kind: drop, topic: flatsat/sun_sensor, magnitude: 0.5, start_s: 300, "
                              "duration_s: 120}\n";
   // stderr alone: a successful run's figures add nothing to it (gnuplot's warnings once did).
-  const auto rig = test::runCommand(test::kFlatsat + " run " + scenario + " --composed -q --out " + run +
-                                    "/run 2>&1 >/dev/null");
+  const auto rig = test::runCommand("(" + test::kFlatsat + " run " + scenario + " --composed -q --out " + run +
+                                    "/run 2>&1 >/dev/null)");
   INFO(rig.output);
   REQUIRE(rig.exit_code == 0);
   CHECK(rig.output.empty());
@@ -91,9 +91,9 @@ TEST_CASE("the figures mark faults on the time axis, give every series its own c
   CHECK(script.find("key outside right") == std::string::npos);
 
   // A dawn-dusk orbit never enters eclipse: no empty series to plot, no warning.
-  const auto detumble = test::runCommand(test::kFlatsat + " run " + std::string(FLATSAT_SCENARIO_DIR) +
+  const auto detumble = test::runCommand("(" + test::kFlatsat + " run " + std::string(FLATSAT_SCENARIO_DIR) +
                                          "/detumble.yaml --composed -q --out " + run + "/detumble" +
-                                         " --set duration_orbits=null --set duration_s=600 2>&1 >/dev/null");
+                                         " --set duration_orbits=null --set duration_s=600 2>&1 >/dev/null)");
   INFO(detumble.output);
   CHECK(detumble.exit_code == 0);
   CHECK(detumble.output.empty());
