@@ -11,7 +11,7 @@
 #   deploy/rig.sh build | deps                           just those steps
 # Safe to re-run: it installs only what is missing and builds incrementally.
 set -euo pipefail
-here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd -P)
 build="${FLATSAT_BUILD_DIR:-$here/build}"
 # ccache (when installed) keys on paths relative to the checkout: a fresh
 # clone elsewhere (CI) reuses what another clone compiled.

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: Apache-2.0
 # The Debian package as a user gets it: build/flatsat_<version>_amd64.deb
-# (made here by the `deb` target, as `deploy/rig.sh package` makes it),
+# (made here by `deploy/rig.sh package`, as the README says),
 # installed with apt into a clean Debian 12 minbase root (debootstrap), with
 # no source or build tree in sight. There, in a network namespace of its own
 # (only lo) and a private /dev/shm:
@@ -21,7 +21,8 @@ if [ "$(id -u)" -ne 0 ] || ! command -v debootstrap >/dev/null || ! command -v u
   exit 77
 fi
 
-cmake --build "$build" --target deb >/dev/null
+# As the README says to make it.
+FLATSAT_BUILD_DIR="$build" bash "$here/deploy/rig.sh" package >/dev/null
 deb=$(ls "$build"/flatsat_*_amd64.deb)
 echo "package: $deb ($(du -h "$deb" | cut -f1))"
 
@@ -53,7 +54,7 @@ in_root() {
 }
 
 start=$(date +%s)
-ARGS=(sh -c "apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends /tmp/$(basename "$deb") >/tmp/apt.log 2>&1 || { tail -n 30 /tmp/apt.log; exit 1; }")
+ARGS=(sh -c "apt-get -o APT::Sandbox::User=root update -qq && DEBIAN_FRONTEND=noninteractive apt-get -o APT::Sandbox::User=root install -y -qq --no-install-recommends /tmp/$(basename "$deb") >/tmp/apt.log 2>&1 || { tail -n 30 /tmp/apt.log; exit 1; }")
 in_root || fail "apt-get install of the package into the minbase root"
 echo "apt-get install: $(($(date +%s) - start)) s"
 [ -e "$root$here" ] && fail "the source tree is visible in the root"
