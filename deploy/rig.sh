@@ -11,7 +11,9 @@
 #   deploy/rig.sh build | deps                           just those steps
 # Safe to re-run: it installs only what is missing and builds incrementally.
 set -euo pipefail
-here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd -P)
+# The checkout this script is in, through any symlink to it (a folder of
+# links to a checkout must not become a second source tree of its build).
+here=$(cd "$(dirname "$(readlink -f "${BASH_SOURCE[0]}")")/.." && pwd -P)
 build="${FLATSAT_BUILD_DIR:-$here/build}"
 # ccache (when installed) keys on paths relative to the checkout: a fresh
 # clone elsewhere (CI) reuses what another clone compiled.
