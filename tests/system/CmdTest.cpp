@@ -5,6 +5,7 @@
 // commands, the acknowledgements and their effects from the acknowledged step on.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -165,16 +166,21 @@ TEST_CASE("cmd sends mode, fault and parameter commands that the components ackn
   std::size_t lost_sun = 0;
   for (const auto& row : exported(out, "bus_delivery")) lost_sun += row["topic"] == "flatsat/sun_sensor" && row["dropped"] == true;
   CHECK(lost_sun > 20);
-  // On a loaded machine the acknowledgement may come late in the run, so the
-  // estimates are judged from the acknowledged step on (one step's margin for
-  // a sample already in flight), and there must be enough of them to mean it.
+  // Paced, each consumer applies the drop when the fault command reaches it,
+  // which on a loaded machine can be some steps after the dynamics server
+  // acknowledged it: the estimator's last Sun correction comes within 2 s of
+  // that acknowledgement, and enough estimates follow without one to mean it.
   const auto drop_step = server_acks["drop"]["header"]["step"].get<std::uint64_t>();
+  std::uint64_t last_sun_step = 0;
   std::size_t without_sun = 0;
   for (const auto& estimate : exported(out, "attitude_estimate")) {
-    if (estimate["header"]["step"].get<std::uint64_t>() <= drop_step + 1) continue;
-    CHECK(estimate["sun_used"] == false);
-    ++without_sun;
+    const auto step = estimate["header"]["step"].get<std::uint64_t>();
+    if (estimate["sun_used"] == true) last_sun_step = std::max(last_sun_step, step);
   }
+  for (const auto& estimate : exported(out, "attitude_estimate")) {
+    without_sun += estimate["header"]["step"].get<std::uint64_t>() > last_sun_step;
+  }
+  CHECK(last_sun_step <= drop_step + 20);
   CHECK(without_sun >= 10);
   fs::remove_all(run);
   fs::remove(run + ".log");

@@ -142,7 +142,7 @@ TEST_CASE("flatsat mc refuses bad input with exit status 2, naming what is wrong
   struct Case {
     std::string args, says;
   };
-  for (const auto& c : {Case{"/nonexistent/scenario.yaml --runs 2", "/nonexistent/scenario.yaml: no such scenario"},
+  for (const auto& c : {Case{"/nonexistent/scenario.yaml --runs 2", "/nonexistent/scenario.yaml: no such file"},
                         Case{kDefault + " --runs 0", "--runs 0: must be >= 1"},
                         Case{kDefault + " --runs 2 --jobs 0", "--jobs 0: must be >= 1"},
                         Case{kDefault + " --runs 2 --set components.gyro.noise_typo=1", "noise_typo"}}) {
