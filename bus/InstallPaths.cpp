@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "bus/InstallPaths.hpp"
 
+#include <algorithm>
 #include <cstdlib>
 #include <sstream>
 
@@ -80,6 +81,17 @@ std::string scenarioNotFound(const std::string& given) {
 std::string installedScenario(const std::string& name) {
   if (const auto found = findIn(scenarioDirs(), name)) return found->string();
   return name;
+}
+
+std::vector<fs::path> scenarioFilesIn(const fs::path& dir) {
+  std::vector<fs::path> files;
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) return files;
+  for (const auto& entry : fs::directory_iterator(dir, ec)) {
+    if (entry.path().extension() == ".yaml") files.push_back(entry.path());
+  }
+  std::sort(files.begin(), files.end());
+  return files;
 }
 
 std::string listOfDirs(const std::vector<fs::path>& dirs) {

@@ -43,6 +43,9 @@ std::string scenarioNotFound(const std::string& given);
 /// when none is installed (the caller's error then names it).
 std::string installedScenario(const std::string& name);
 
+/// The scenario files (*.yaml) in `dir`, sorted by name; none when it is no folder.
+std::vector<std::filesystem::path> scenarioFilesIn(const std::filesystem::path& dir);
+
 /// "a, b or c" of the folders, for an error that says where it looked.
 std::string listOfDirs(const std::vector<std::filesystem::path>& dirs);
 

@@ -46,15 +46,8 @@ std::vector<TopicInfo> registryTopics() {
 /// The scenarios shipped with flatsat (the first scenario folder holding any), default.yaml first.
 std::vector<bus::Scenario> shippedScenarios(std::string& where) {
   for (const auto& dir : bus::scenarioDirs()) {
-    if (!fs::is_directory(dir)) continue;
-    std::vector<fs::path> files;
-    for (const auto& entry : fs::directory_iterator(dir)) {
-      if (entry.path().extension() == ".yaml") files.push_back(entry.path());
-    }
-    std::sort(files.begin(), files.end(), [](const fs::path& a, const fs::path& b) {
-      const bool a_default = a.filename() == "default.yaml", b_default = b.filename() == "default.yaml";
-      return a_default != b_default ? a_default : a < b;
-    });
+    std::vector<fs::path> files = bus::scenarioFilesIn(dir);
+    std::stable_partition(files.begin(), files.end(), [](const fs::path& f) { return f.filename() == "default.yaml"; });
     std::vector<bus::Scenario> scenarios;
     for (const auto& file : files) {
       try {

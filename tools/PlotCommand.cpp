@@ -44,10 +44,10 @@ struct PlotOptions {
   bool list = true;  ///< print each PNG's path
 };
 
-/// gnuplot single-quoted string: a quote is doubled.
-std::string quoted(const fs::path& path) {
+/// gnuplot single-quoted string (a file name, a label): a quote is doubled.
+std::string quoted(const std::string& text) {
   std::string out = "'";
-  for (char c : path.string()) out += c == '\'' ? std::string("''") : std::string(1, c);
+  for (char c : text) out += c == '\'' ? std::string("''") : std::string(1, c);
   return out + "'";
 }
 
@@ -108,7 +108,7 @@ struct FigureScript {
       const double t = e.t_s * ta.scale;
       s << "set arrow from " << t << ", graph 0 to " << t << ", graph 1 nohead dt 3 lw 1.2 lc rgb '#7a0177' front\n";
       if (events->size() <= kLabelledAtMost) {
-        s << "set label " << quotedText(e.label.substr(0, 40)) << " at " << t
+        s << "set label " << quoted(e.label.substr(0, 40)) << " at " << t
           << ", graph 0.97 rotate by 90 right offset -0.6,0 font ',9' tc rgb '#7a0177' front\n";
       }
     }
@@ -119,12 +119,6 @@ struct FigureScript {
     s << "set multiplot layout " << rows << "," << columns << " title \"";
     for (char ch : title) s << (ch == '"' || ch == '\\' ? "\\" : "") << ch;
     s << "\\n\"\n";
-  }
-
-  static std::string quotedText(const std::string& text) {
-    std::string q = "'";
-    for (char ch : text) q += ch == '\'' ? std::string("''") : std::string(1, ch);
-    return q + "'";
   }
 };
 

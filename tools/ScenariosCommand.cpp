@@ -32,11 +32,7 @@ int listScenarios() {
   for (const auto& dir : bus::scenarioDirs()) {
     std::error_code ec;
     if (!fs::is_directory(dir, ec)) continue;
-    std::vector<fs::path> files;
-    for (const auto& entry : fs::directory_iterator(dir, ec)) {
-      if (entry.path().extension() == ".yaml") files.push_back(entry.path());
-    }
-    std::sort(files.begin(), files.end());
+    const auto files = bus::scenarioFilesIn(dir);
     std::cout << dir.string() << ":\n";
     for (const auto& file : files) {
       const std::string name = file.stem().string();
