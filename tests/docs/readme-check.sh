@@ -44,7 +44,7 @@ awk -v out="$script" '
 for entry in "$source"/*; do ln -s "$entry" "$work/$(basename "$entry")"; done
 rm -f "$work/build" && ln -s "$build" "$work/build"
 cd "$work"
-export FLATSAT_DOMAIN=$(( ($$ % 150) + 60 ))
+source "$source/tests/support/test-domain.sh"  # FLATSAT_DOMAIN, held
 export FLATSAT_BUILD_DIR="$build"
 echo "running $(grep -vc '^echo "+ README' "$script") README commands in $work on domain $FLATSAT_DOMAIN"
 SECONDS=0

@@ -23,13 +23,7 @@ trap cleanup EXIT
 if [ ! -d "$here/node_modules/@foxglove/ws-protocol" ]; then
   npm ci --prefix "$here" --no-audit --no-fund >&2
 fi
-# A domain of this test's own, held by a lock as tests/support/TestDomain.hpp holds one.
-for i in $(seq 0 109); do
-  domain=$((10 + 2 * (($$ + i) % 110)))
-  exec 9>"/tmp/flatsat-test-domain-$domain.lock"
-  flock -n 9 && break
-done
-export FLATSAT_DOMAIN=$domain
+source "$here/../support/test-domain.sh"
 
 waitFor() {  # FILE TEXT SECONDS
   for _ in $(seq 1 $((10 * $3))); do

@@ -20,12 +20,7 @@ cleanup() {
 }
 trap cleanup EXIT
 [ -d "$here/node_modules/@foxglove/ws-protocol" ] || npm ci --prefix "$here" --no-audit --no-fund >&2
-for i in $(seq 0 109); do  # a domain of its own, as foxglove-check.sh takes one
-  domain=$((10 + 2 * (($$ + i) % 110)))
-  exec 9>"/tmp/flatsat-test-domain-$domain.lock"
-  flock -n 9 && break
-done
-export FLATSAT_DOMAIN=$domain
+source "$here/../support/test-domain.sh"
 "$bin/flatsat" run "$scenarios/default.yaml" -q --no-plots --out "$work/run" --set mode=paced \
   --set duration_orbits=null --set duration_s=$((10 + 27 * rounds)) >"$work/run.log" 2>&1 &
 rig=$!
