@@ -394,12 +394,12 @@ int run(const RunOptions& o, nlohmann::ordered_json* summary_out = nullptr) {
   // `flatsat clean-shm` removes them.
   if (!o.composed) rig::cleanStaleSharedMemory(rig::kShmGrace);
   if (!result.ok) {
-    std::cerr << "error: " << result.failure << "\n";
     const auto summary = writeFailedSummary(scenario, run_dir, result);
-    if (bus::shutdownRequested()) {
+    if (bus::shutdownRequested()) {  // the operator's stop: said as such, not as an error
       sayInterrupted(o, scenario, run_dir, summary);
       return kExitInterrupted;
     }
+    std::cerr << "error: " << result.failure << "\n";
     return kExitFailed;
   }
   if (!o.resume.empty()) {

@@ -146,8 +146,9 @@ TEST_CASE("Ctrl-C on a run exits 130, keeps its summary with the step reached, a
   CHECK(output.find("flatsat: interrupted; the recording holds steps 0.." +
                     std::to_string(summary["steps"].get<std::uint64_t>() - 1)) != std::string::npos);
   CHECK(output.find("flatsat run " + kDefault + " --resume " + out) != std::string::npos);
-  // The operator's stop is no component's error.
+  // The operator's stop is no component's error, nor the tool's.
   CHECK(test::readFile(out + "/logs/recorder.log").find("[error]") == std::string::npos);
+  CHECK(output.find("error:") == std::string::npos);
   fs::remove_all(out);
   fs::remove(log);
 }
