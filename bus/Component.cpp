@@ -15,7 +15,7 @@ Component::Component(Bus& bus, NodeOptions options)
                         if (grant_observer_) grant_observer_(grant);
                         if (skip_through_ && grant.header().step() <= *skip_through_ && !grant.stop()) return;
                         grants_.push_back({grant.header().step(), grant.header().sim_time_ns(),
-                                           grant.step_period_ns(), grant.stop()});
+                                           grant.step_period_ns(), grant.final_step(), grant.stop()});
                       }
                       notify();
                     },
@@ -137,9 +137,11 @@ bool Component::handle(const Grant& grant, bool inputs_in) {
       keepCheckpoint();
     }
     step(ctx);
-    msg::StepDone done;
-    stamp(done.header(), ctx, name());
-    done_.write(done);
+    if (StepReports{divider_, grant.final_step}.reportsAt(ctx.step)) {
+      msg::StepDone done;
+      stamp(done.header(), ctx, name());
+      done_.write(done);
+    }
     ++steps_done_;
     if (!options_.checkpoint_file.empty()) {
       if (auto state = saveState(); !state.is_null()) {

@@ -7,13 +7,14 @@
 
 #include "bus/Checkpoint.hpp"
 #include "bus/Node.hpp"
+#include "bus/StepReports.hpp"
 
 namespace flatsat::bus {
 
 /// A scheduled component: the client side of the lockstep protocol
 /// (architecture, "Time and the step protocol"). At each grant k for which
 /// it is due, it waits for its inputs stamped k, computes, publishes its
-/// outputs stamped k and then StepDone(k).
+/// outputs stamped k and then, at the steps StepReports names, StepDone(k).
 class Component : public Node {
  public:
   Component(Bus& bus, NodeOptions options);
@@ -74,6 +75,7 @@ class Component : public Node {
     std::uint64_t step = 0;
     std::int64_t sim_time_ns = 0;  ///< [ns]
     std::int64_t period_ns = 0;    ///< [ns]
+    std::uint64_t final_step = 0;  ///< [-]
     bool stop = false;
   };
   void loop();

@@ -30,7 +30,7 @@ NodeArgs parseNodeArgs(int argc, char** argv, const std::string& default_name) {
                "started again mid-run (flatsat run --restart): take the state back from <out>/checkpoints/");
   app.add_flag("--shared-memory-rig", args.shared_memory_rig,
                "every process of this rig runs on this host, started by flatsat run: "
-               "a lockstep sink reads best-effort where it shares memory");
+               "lockstep stepped readers go best-effort where they share memory");
   app.set_version_flag("--version", kFlatsatVersion);
   try {
     app.parse(argc, argv);
@@ -114,15 +114,15 @@ BusOptions processBusOptions(const Scenario& scenario, const NodeArgs& args,
     options.tuning.data_sharing = false;
   }
   options.acks_over_shm = lockstep && !any_external;
-  // A sink the time master waits for (its trail bounds how far it lags), with
-  // data sharing to every writer: DDS Security turns data sharing off
-  // (FLATSAT_SECURE_DIR may reach a process the launcher was not told of).
-  const bool trailing_sink = scenario.schedule().contains(args.name) && !publishesSteppedTopic(args.name);
-  options.tuning.best_effort_readers = args.shared_memory_rig && lockstep && trailing_sink &&
+  // Every writer shares memory with it, and the time master bounds how far a
+  // component it schedules may fall behind (bus/StepReports.hpp); DDS Security
+  // turns data sharing off (FLATSAT_SECURE_DIR may reach a process the launcher
+  // was not told of).
+  options.tuning.best_effort_readers = args.shared_memory_rig && lockstep && scenario.schedule().contains(args.name) &&
                                        options.shared_memory && options.tuning.data_sharing &&
                                        options.security_dir.empty();
   if (options.tuning.best_effort_readers) {
-    spdlog::info("stepped readers best-effort: a lockstep sink whose every writer shares memory");
+    spdlog::info("stepped readers best-effort: a lockstep rig whose every writer shares memory");
   }
   return options;
 }

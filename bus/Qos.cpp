@@ -65,7 +65,7 @@ dds::DataReaderQos readerQos(QosKind kind, const QosTuning& tuning, bool watch_l
   common(qos, kind == QosKind::kState ? kStateReaderDepth : kSteppedDepth, tuning);
   if (kind == QosKind::kState && watch_liveliness) state(qos);
   if (kind == QosKind::kStepped) stepped(qos, tuning);
-  if (tuning.best_effort_readers && kind == QosKind::kStepped) {
+  if (tuning.best_effort_readers && (kind == QosKind::kStepped || kind == QosKind::kProtocol)) {
     qos.reliability().kind = dds::BEST_EFFORT_RELIABILITY_QOS;
   }
   return qos;

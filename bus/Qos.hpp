@@ -52,16 +52,18 @@ struct QosTuning {
   /// A data-sharing reader acknowledges every sample it takes (Fast DDS
   /// 2.9.1, StatefulReader::change_read_by_user), which wakes a thread of the
   /// writer's process: twelve a step for the default rig's recorder.
-  /// Lossless only for a lockstep sink whose every writer shares memory with
-  /// it (the launcher vouches: NodeArgs::shared_memory_rig): a
+  /// Lossless only in a lockstep rig whose every writer shares memory with
+  /// its readers (the launcher vouches: NodeArgs::shared_memory_rig): a
   /// transient-local data-sharing reader takes a writer's pool history when
-  /// it matches, as a reliable one would, and the time master keeps the sink
-  /// within TimeMaster::kSinkTrailSteps (8) steps of every writer, well
-  /// inside the writers' 64 samples; the time master waits for the sink's
+  /// it matches, as a reliable one would, and the time master keeps every
+  /// component within 15 steps of every writer (bus/StepReports.hpp), well
+  /// inside the writers' 64 samples; the time master waits for everyone's
   /// last StepDone before it stops. Over a transport a best-effort sample
-  /// can be lost. The grants stay reliable: the time master waits for the
-  /// stop grant's acknowledgements before its process goes, and with it the
-  /// grant's pool.
+  /// can be lost. The grants and StepDones (kProtocol) too: a grant reader
+  /// lags no more than a stepped one, and the time master keeps its process,
+  /// and the grants' pool, until every component said it stopped
+  /// (TimeMaster::waitForStoppedComponents), as the stop grant's
+  /// acknowledgements did for a reliable reader.
   bool best_effort_readers = false;
 };
 

@@ -48,7 +48,7 @@ class Recording {
   void commitInBackground();
   /// commitInBackground() of the rows stamped at or before `step` only: the
   /// later ones stay queued, in their order, for the next commit. A lockstep
-  /// recorder trailing the rig (bus::TimeMaster::kSinkTrailSteps) holds
+  /// recorder trailing the rig (bus/StepReports.hpp) holds
   /// samples of steps it has not reached yet; a crash then still leaves a
   /// recording that ends at a step boundary.
   void commitInBackgroundThrough(std::uint64_t step);

@@ -63,7 +63,7 @@ TimeMaster::TimeMaster(Bus& bus, NodeOptions options, Timing timing)
     std::lock_guard lock(mutex_);  // the StepDone reader exists already
     for (const auto& [component, divider] : options_.schedule) {
       if (component == name()) continue;
-      awaited_.push_back({component, divider, publishesSteppedTopic(component) ? 0 : kSinkTrailSteps, std::nullopt});
+      awaited_.push_back({component, {divider, timing_.final_step}, std::nullopt});
     }
   }
   acknowledgeBusFaults(bus_fault_acks_);
@@ -147,22 +147,21 @@ void TimeMaster::resendStep(std::uint64_t k, const std::string& missing) {
   grant_.rewriteLast();
 }
 
-bool TimeMaster::Awaited::doneWith(std::uint64_t k, bool last) const {
-  const std::uint64_t needed = last ? k : (k > trail_steps ? k - trail_steps : 0);
-  return needed % divider != 0 || (newest_done && *newest_done >= needed);
+bool TimeMaster::Awaited::doneWith(std::uint64_t k) const {
+  const std::uint64_t needed = reports.neededToClose(k);
+  return !reports.reportsAt(needed) || (newest_done && *newest_done >= needed);
 }
 
 std::string TimeMaster::notDone(std::uint64_t k) const {
   std::string missing;
   for (const Awaited& a : awaited_) {
-    if (!a.doneWith(k, k >= timing_.final_step)) missing += " " + a.component;
+    if (!a.doneWith(k)) missing += " " + a.component;
   }
   return missing;
 }
 
 bool TimeMaster::allDone(std::uint64_t k) const {
-  const bool last = k >= timing_.final_step;
-  return std::all_of(awaited_.begin(), awaited_.end(), [k, last](const Awaited& a) { return a.doneWith(k, last); });
+  return std::all_of(awaited_.begin(), awaited_.end(), [k](const Awaited& a) { return a.doneWith(k); });
 }
 
 void TimeMaster::waitForDone(std::uint64_t k) {
@@ -357,6 +356,19 @@ void TimeMaster::stop() {
   flushOutputs();
   grant_.waitForAcknowledgments(std::chrono::seconds(5));
   publishLastHealth(msg::ComponentState::STOPPED, timing_.final_step + 1, "run complete");
+  if (!inProcess()) waitForStoppedComponents(std::chrono::seconds(5));
+}
+
+void TimeMaster::waitForStoppedComponents(std::chrono::seconds timeout) {
+  std::unique_lock lock(mutex_);
+  changed_.wait_for(lock, timeout, [this] {
+    return std::all_of(awaited_.begin(), awaited_.end(), [this](const Awaited& a) {
+      const auto state = states_.find(a.component);
+      return lost_.count(a.component) != 0 ||
+             (state != states_.end() &&
+              (state->second == msg::ComponentState::STOPPED || state->second == msg::ComponentState::FAILED));
+    });
+  });
 }
 
 }  // namespace flatsat::bus

@@ -8,6 +8,7 @@
 
 #include "bus/CommandAcks.hpp"
 #include "bus/Node.hpp"
+#include "bus/StepReports.hpp"
 #include "bus/TickLateness.hpp"
 
 namespace flatsat::bus {
@@ -15,9 +16,9 @@ namespace flatsat::bus {
 /// The server side of the step protocol: owns simulated time. It starts
 /// once every scheduled component reported READY; at each step k it
 /// publishes the step's data and the grant; in lockstep it then waits for
-/// StepDone(k) from every component due at k and for its own inputs stamped
-/// k, paced it waits for the wall-clock tick and takes the newest inputs;
-/// then it advances.
+/// its own inputs stamped k and the StepDones StepReports asks for (a
+/// component trails by a few steps at most), paced it waits for the
+/// wall-clock tick and takes the newest inputs; then it advances.
 class TimeMaster : public Node {
  public:
   struct Timing {
@@ -54,6 +55,13 @@ class TimeMaster : public Node {
 
  private:
   void waitForComponents();
+  /// Over DDS, after the stop: keeps this process, and with it the grants'
+  /// data-sharing pool, until every component said it stopped (or failed, or
+  /// its liveliness lapsed), or `timeout` passed. A best-effort grant reader
+  /// (QosTuning::best_effort_readers) acknowledges nothing, so the wait for the
+  /// stop grant's acknowledgements does not cover it; a reader still to take
+  /// the stop from a pool that is gone never takes it.
+  void waitForStoppedComponents(std::chrono::seconds timeout);
   void waitForDone(std::uint64_t k);
   /// Lockstep stall at step k: the grant and this master's samples of step k
   /// again; a component granted a step it did already writes its samples and
@@ -92,31 +100,17 @@ class TimeMaster : public Node {
   std::chrono::steady_clock::time_point start_;        // of step 0 (paced ticks)
   std::chrono::steady_clock::time_point next_health_;  // heartbeat
   /// Each component the master waits for and the newest step it reported
-  /// done. Lockstep grants k+1 only after all of k, and a component steps in
-  /// order, so "done with k" is "newest done >= k": a flat table scanned by
-  /// name, with no allocation per StepDone (a composed rig's profile).
+  /// done. Lockstep grants k+1 only after its inputs of k and the reports
+  /// StepReports asks for, and a component steps in order, so "done with
+  /// step s" is "newest done >= s": a flat table scanned by name, with no
+  /// allocation per StepDone (a composed rig's profile).
   struct Awaited {
     std::string component;
-    std::uint32_t divider = 1;
-    /// [steps] How far its StepDone may trail the step being closed: 0, or
-    /// kSinkTrailSteps for a sink.
-    std::uint64_t trail_steps = 0;
+    StepReports reports;  ///< its divider and the run's final step
     std::optional<std::uint64_t> newest_done;
-    /// Done with what closing step k needs (or not due); `last`: k is the
-    /// final step, which nobody may trail.
-    bool doneWith(std::uint64_t k, bool last) const;
+    /// Done with what closing step k needs (StepReports::neededToClose).
+    bool doneWith(std::uint64_t k) const;
   };
-  /// A sink (a component that publishes no stepped topic: the recorder) may
-  /// report StepDone(k) up to this many steps after the master closed k. No
-  /// step waits on a sink's data, and its samples wait in its readers
-  /// (64 deep; best-effort in a rig of this host's processes,
-  /// QosTuning::best_effort_readers) and are stored by step; the recorder commits only
-  /// whole steps (Recording::commitInBackgroundThrough). Its StepDone was one
-  /// more hop at the end of every step's chain, and its work on a step can
-  /// now overlap the next step's. Step 0 and the final step are
-  /// waited for in full: a sample a late-matched reader missed shows at
-  /// step 0, where the master's resend brings it (kResendAfter).
-  static constexpr std::uint64_t kSinkTrailSteps = 8;
   std::vector<Awaited> awaited_;
   std::string notDone(std::uint64_t k) const;  ///< " a b" of the components due at k and not done; under mutex_
   bool allDone(std::uint64_t k) const;         ///< notDone(k) is empty; under mutex_

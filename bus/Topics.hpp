@@ -105,12 +105,4 @@ inline bool isSteppedTopic(std::string_view name) {
   return found;
 }
 
-/// Whether `component` is the producer of a stepped topic of the registry
-/// (else a sink: the time master lets it trail, TimeMaster::kSinkTrailSteps).
-inline bool publishesSteppedTopic(std::string_view component) {
-  bool found = false;
-  forEachTopic([&](const auto& def) { found = found || (def.producer == component && def.qos == QosKind::kStepped); });
-  return found;
-}
-
 }  // namespace flatsat::bus

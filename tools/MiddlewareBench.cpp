@@ -62,6 +62,15 @@ bus::BusOptions loopback(std::uint32_t domain, const std::string& name) {
           .acks_over_shm = true};
 }
 
+/// The bare graph's processes as the launcher's lockstep rig has them: every
+/// one scheduled and sharing memory, so stepped and protocol readers are
+/// best-effort (bus/NodeMain.cpp processBusOptions).
+bus::BusOptions bareGraph(std::uint32_t domain, const std::string& name) {
+  auto options = loopback(domain, name);
+  options.tuning.best_effort_readers = true;
+  return options;
+}
+
 struct Hop {
   double p50_us;  ///< [µs] median one-way
   double p99_us;  ///< [µs] 99th percentile one-way
@@ -233,7 +242,7 @@ std::unique_ptr<bus::Component> makeComponent(bus::Bus& bus, const std::string& 
 int runComponent(const std::string& role, std::uint32_t domain) {
   spdlog::set_level(spdlog::level::warn);
   try {
-    bus::Bus bus(loopback(domain, role));
+    bus::Bus bus(bareGraph(domain, role));
     makeComponent(bus, role)->run();
     return 0;
   } catch (const std::exception& e) {
@@ -249,7 +258,7 @@ double measureLimit(std::uint64_t steps) {
   for (const char* role : kComponents) peers.start({"bench-node", role, "--domain", std::to_string(domain)});
   double steps_per_s = 0.0;
   {
-    bus::Bus bus(loopback(domain, kMaster));
+    bus::Bus bus(bareGraph(domain, kMaster));
     BareMaster master(bus, steps);
     master.run();
     steps_per_s = master.stepsPerSecond();

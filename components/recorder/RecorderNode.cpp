@@ -195,7 +195,7 @@ void RecorderNode::step(const bus::StepContext& ctx) {
   if ((ctx.step + 1) % params_.commit_every_steps != 0) return;
   std::lock_guard lock(recording_mutex_);
   // Lockstep, the samples of the next steps may be in already (the time
-  // master lets the recorder trail: bus::TimeMaster::kSinkTrailSteps); they
+  // master lets the recorder trail: bus/StepReports.hpp); they
   // wait for the commit of their own steps. Paced, samples come as they come
   // (a bridge's older stamps after newer ones): a commit takes them all, in
   // the order they came.
