@@ -182,6 +182,32 @@ TEST_CASE("cmd sends mode, fault and parameter commands that the components ackn
   }
   CHECK(last_sun_step <= drop_step + 20);
   CHECK(without_sun >= 10);
+
+  // The figures mark each accepted command on the time axis, with its words;
+  // a refused one changed nothing and is not marked.
+  const auto plotted = test::runCommand(test::kFlatsat + " plot " + run + "/recording.sqlite");
+  INFO(plotted.output);
+  REQUIRE(plotted.exit_code == 0);
+  const std::string script = test::readFile(fs::path(run) / "plots" / "gnuplot" / "plots.gp");
+  std::size_t events = exported(out, "fault_event").size(), arrows = 0;
+  for (const auto& [component, component_acks] : acks) {
+    for (const auto& ack : component_acks) events += ack["accepted"].get<bool>();
+  }
+  const std::string event_mark = "nohead dt 3 lw 1.2 lc rgb '#7a0177'";  // not the acquisition's grey line
+  for (auto at = script.find(event_mark); at != std::string::npos; at = script.find(event_mark, at + 1)) ++arrows;
+  CAPTURE(events, arrows);
+  CHECK(arrows >= events);
+  CHECK(arrows % events == 0);  // the same marks on every time figure
+  if (events <= 12) {           // more would get lines alone (PlotCommand.cpp)
+    for (const auto& [component, component_acks] : acks) {
+      for (const auto& ack : component_acks) {
+        std::string label = (ack["command"].get<std::string>() + " " + ack["reason"].get<std::string>()).substr(0, 40);
+        for (auto q = label.find('\''); q != std::string::npos; q = label.find('\'', q + 2)) label.insert(q, "'");
+        CAPTURE(label);
+        CHECK((script.find("set label '" + label + "'") != std::string::npos) == ack["accepted"].get<bool>());
+      }
+    }
+  }
   fs::remove_all(run);
   fs::remove(run + ".log");
 }
