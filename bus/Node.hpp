@@ -226,8 +226,9 @@ class Node {
   std::uint32_t dividerOf(const std::string& component) const;
 
   /// [steps] How far past the newest grant this node has seen a sample may be
-  /// stamped. Lockstep producers are never ahead of the grants a consumer
-  /// has seen (they trail, bus/StepReports.hpp); farther is a
+  /// stamped. A lockstep producer is at most a step ahead of the grants a
+  /// consumer has seen (its grant can come first; components otherwise
+  /// trail the master, bus/StepReports.hpp); farther is a
   /// clock gone wrong or a flood, which would otherwise be held for ever.
   static constexpr std::uint64_t kStampWindowSteps = 64;
   /// Whether a sample stamped `step` is near enough the newest grant to be taken.

@@ -69,6 +69,12 @@ TimeMaster::TimeMaster(Bus& bus, NodeOptions options, Timing timing)
   acknowledgeBusFaults(bus_fault_acks_);
 }
 
+bool TimeMaster::ended(const std::string& component) const {
+  const auto state = states_.find(component);
+  return state != states_.end() &&
+         (state->second == msg::ComponentState::STOPPED || state->second == msg::ComponentState::FAILED);
+}
+
 std::string TimeMaster::failedComponents() const {
   std::string failed;
   for (const auto& [component, state] : states_) {
@@ -85,10 +91,7 @@ std::string TimeMaster::failedComponents() const {
 void TimeMaster::livelinessChanged(const std::string& component, bool alive) {
   {
     std::lock_guard lock(mutex_);
-    const auto state = states_.find(component);
-    const bool ended = state != states_.end() && (state->second == msg::ComponentState::STOPPED ||
-                                                  state->second == msg::ComponentState::FAILED);
-    if (component == name() || (!alive && ended)) return;
+    if (component == name() || (!alive && ended(component))) return;
     if (std::find(options_.externals.begin(), options_.externals.end(), component) == options_.externals.end()) {
       // The launcher started its process and watches it: a death it sees at
       // once. A lease that lapsed with the process alive is a starved process
@@ -362,12 +365,8 @@ void TimeMaster::stop() {
 void TimeMaster::waitForStoppedComponents(std::chrono::seconds timeout) {
   std::unique_lock lock(mutex_);
   changed_.wait_for(lock, timeout, [this] {
-    return std::all_of(awaited_.begin(), awaited_.end(), [this](const Awaited& a) {
-      const auto state = states_.find(a.component);
-      return lost_.count(a.component) != 0 ||
-             (state != states_.end() &&
-              (state->second == msg::ComponentState::STOPPED || state->second == msg::ComponentState::FAILED));
-    });
+    return std::all_of(awaited_.begin(), awaited_.end(),
+                       [this](const Awaited& a) { return lost_.count(a.component) != 0 || ended(a.component); });
   });
 }
 

@@ -77,6 +77,8 @@ class TimeMaster : public Node {
   void addToHealth(msg::Health& health) const override;
   TickLateness tick_lateness_;  ///< paced: each grant's lateness against start_ + k periods
   std::string failedComponents() const;
+  /// Its last health said STOPPED or FAILED. Under mutex_.
+  bool ended(const std::string& component) const;
   /// The acknowledgements of bus faults commanded since the last step, a
   /// FaultEvent for each bus fault that began or stopped acting at step k, and
   /// one (kind "lost" or "late", from the component) for each liveliness lost

@@ -38,7 +38,7 @@ TEST_CASE("a component reports every eighth step or so, and never falls out of i
       const StepReports reports{divider, final_step};
       CAPTURE(divider, final_step, reports.period());
       CHECK(reports.period() % divider == 0);
-      CHECK(reports.period() >= std::min<std::uint64_t>(divider, StepReports::kReportEverySteps) );
+      CHECK(reports.period() >= std::min<std::uint64_t>(divider, StepReports::kReportEverySteps));
       CHECK(reports.reportsAt(0));                   // the first step in full
       CHECK(reports.reportsAt(reports.lastDue()));   // the last one too
       CHECK(reports.neededToClose(final_step) == reports.lastDue());
