@@ -95,6 +95,7 @@ void Component::start() {
 }
 
 void Component::finish() {
+  lastStepReached();  // a stop may come before the last step: an interrupted or skipped-ahead run
   flushOutputs();
   done_.waitForAcknowledgments(std::chrono::seconds(5));
   beforeStopped();
@@ -153,6 +154,7 @@ bool Component::handle(const Grant& grant, bool inputs_in) {
   }
   dropInputsAfter(ctx.step);
   reachedStep(ctx.step);
+  if (ctx.step >= grant.final_step) lastStepReached();
   // Lockstep looks at the clock every 16th step only: a heartbeat a few
   // steps late tells the same, and a composed rig steps faster than the
   // clock reads it took. Paced steps follow the clock anyway.

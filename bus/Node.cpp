@@ -212,6 +212,7 @@ void Node::publishHealth(msg::ComponentState state, std::uint64_t steps_done,
 }
 
 void Node::inputLate(const std::string& topic, const std::string& producer) {
+  if (last_step_reached_.load(std::memory_order_relaxed)) return;
   const std::uint64_t missed = ++deadlines_missed_;
   spdlog::warn("{}: {} from {} is late: nothing within its deadline; {} deadline(s) missed so far", name(), topic,
                producer.empty() ? "its producer" : producer, missed);

@@ -394,6 +394,10 @@ class Node {
   std::atomic<std::uint64_t> deadlines_missed_{0};
   /// An input's deadline passed (paced stepped topics' deadline QoS), on a Fast DDS thread.
   void inputLate(const std::string& topic, const std::string& producer);
+  /// This node handled the run's last step: its producers publish nothing
+  /// more, so a deadline that passes from now on is no one's miss.
+  void lastStepReached() { last_step_reached_.store(true, std::memory_order_relaxed); }
+  std::atomic<bool> last_step_reached_{false};
   /// Paced: grants skipped because the node fell behind the wall clock.
   std::uint64_t overruns_ = 0;
   /// Guards the node's own bookkeeping (grants, done sets, states) and the

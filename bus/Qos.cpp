@@ -45,14 +45,14 @@ dds::DataWriterQos writerQos(QosKind kind, const QosTuning& tuning) {
   dds::DataWriterQos qos;
   common(qos, kind == QosKind::kState ? 1 : kSteppedDepth, tuning);
   if (kind == QosKind::kState) state(qos);
-  if (kind == QosKind::kCommand) {
-    // A reliable reader acknowledges when a heartbeat asks (Fast DDS's default
-    // period: 3 s), and an operator tool holds its command on offer until the
-    // rig's recorder acknowledged it: 0.1 s lets `flatsat cmd` return within
-    // about that of its acknowledgement. Commands are rare; the writer sends
-    // heartbeats only while a sample is unacknowledged.
-    qos.reliable_writer_qos().times.heartbeatPeriod = {0, 100'000'000};
-  }
+  // A reliable reader acknowledges when a heartbeat asks (Fast DDS's default
+  // period: 3 s). An operator tool holds its command on offer until the rig's
+  // recorder acknowledged it, and a component its last samples and StepDone
+  // until their readers did (over UDP that took up to the 3 s, and the rig's
+  // end with it): 0.1 s lets either go within about that of the
+  // acknowledgement. A writer sends heartbeats only while a sample is
+  // unacknowledged.
+  qos.reliable_writer_qos().times.heartbeatPeriod = {0, 100'000'000};
   if (kind == QosKind::kStepped) {
     stepped(qos, tuning);
     qos.ownership_strength().value = static_cast<uint32_t>(tuning.ownership_strength);

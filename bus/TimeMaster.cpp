@@ -335,6 +335,7 @@ void TimeMaster::endStep(std::uint64_t k) {
   advance(context(k));
   dropInputsAfter(k);
   reachedStep(k);
+  if (k >= timing_.final_step) lastStepReached();
   // Heartbeat (counts stay current); lockstep reads the clock every 16th step, as Component::handle.
   if ((paced() || k % 16 == 0) && std::chrono::steady_clock::now() > next_health_) {
     publishHealth(msg::ComponentState::RUNNING, k + 1, "granting steps");
