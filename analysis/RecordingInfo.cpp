@@ -8,7 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "analysis/SummaryTrust.hpp"
+#include "bus/RecordingMeta.hpp"
 #include "bus/Recording.hpp"
 #include "bus/Serialization.hpp"
 #include "bus/Topics.hpp"
@@ -55,7 +55,8 @@ RecordingInfo describeRecording(const std::string& path) {
   info.size_bytes = fileSize(path);
   info.scenario = recording.meta("scenario");
   info.mode = recording.meta("mode");
-  info.digest = recording.digest({std::string(bus::topics::kHealth.name)}, wallClockVerdict);
+  info.digest = recording.digest();
+  info.recorded_digest = recording.meta(bus::meta::kDigest);
   const auto extents = recording.extents();
   if (extents.empty()) return info;
   const auto sources = recording.topicSources();
@@ -95,6 +96,7 @@ nlohmann::ordered_json toJson(const RecordingInfo& info) {
   j["scenario"] = info.scenario;
   j["mode"] = info.mode;
   j["recording_sha256"] = info.digest;
+  j["recorder_sha256"] = info.recorded_digest.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(info.recorded_digest);
   j["first_step"] = info.first_step;
   j["last_step"] = info.last_step;
   j["duration_sim_s"] = info.sim_duration_s;
@@ -115,7 +117,11 @@ std::string infoTable(const RecordingInfo& info) {
   out << "Recording:     " << info.path << "\n"
       << "Size:          " << line << "\n"
       << "Scenario:      " << info.scenario << " (" << info.mode << ")\n"
-      << "Digest:        " << info.digest << " (recording_sha256)\n";
+      << "Digest:        " << info.digest << " (recording_sha256"
+      << (info.changedSinceRecorded() ? "; NOT the recorder's " + info.recorded_digest + ": samples changed since"
+          : info.recorded_digest.empty() ? ""
+                                         : ", as its recorder kept it")
+      << ")\n";
   std::snprintf(line, sizeof line, "%.3f s simulated (steps %llu..%llu), %.3f s of wall clock", info.sim_duration_s,
                 static_cast<unsigned long long>(info.first_step), static_cast<unsigned long long>(info.last_step),
                 info.wall_duration_s);

@@ -23,7 +23,10 @@ struct RecordingInfo {
   std::uint64_t size_bytes = 0;     // the file with its write-ahead log
   std::string scenario;             // the scenario's name
   std::string mode;                 // lockstep | paced
-  std::string digest;               // recording_sha256, as summary.json gives it
+  std::string digest;               // recording_sha256, as summary.json gives it, computed from the samples
+  std::string recorded_digest;      // the one its recorder kept as it stored them ("": none, as after a crash)
+  /// The samples are not those the recorder stored: changed or added since.
+  bool changedSinceRecorded() const { return !recorded_digest.empty() && recorded_digest != digest; }
   std::uint64_t first_step = 0, last_step = 0;
   double sim_duration_s = 0.0;      // [s] first to last stamp of any sample
   double wall_duration_s = 0.0;     // [s] first to last health sample's wall clock (0: none recorded)

@@ -2,7 +2,6 @@
 #include "analysis/SummaryEstimator.hpp"
 
 #include <cmath>
-#include <map>
 
 #include <Eigen/Dense>
 
@@ -21,24 +20,16 @@ constexpr double kNees3Low = 0.2158;
 constexpr double kNees3High = 9.3484;
 constexpr double kFullSun = 0.999;  // [-] illumination counted as sunlight (no penumbra)
 
-struct TruthAt {
-  Eigen::Quaterniond q_NB;
-  double illumination;
-};
-
 template <const auto& Topic>
 using DefOf = std::remove_cvref_t<decltype(Topic)>;
 
 }  // namespace
 
-void summarizeEstimator(const bus::Scenario& scenario, const bus::Recording& recording,
-                        nlohmann::ordered_json& summary) {
-  std::map<std::uint64_t, TruthAt> truth;
-  recording.forEach(std::string(bus::topics::kTruth.name),
-                    [&](std::uint64_t step, const std::string&, const std::vector<std::uint8_t>& bytes) {
-                      const auto t = bus::deserialize<DefOf<bus::topics::kTruth>>(bytes);
-                      truth[step] = {bus::quat(t.q_inertial_body()).normalized(), t.illumination()};
-                    });
+void EstimatorFigures::addTruth(std::uint64_t step, const TruthSample& truth) {
+  truth_[step] = {bus::quat(truth.q_inertial_body()).normalized(), truth.illumination()};
+}
+
+void EstimatorFigures::summarize(const bus::Recording& recording, nlohmann::ordered_json& summary) const {
   bool has_covariance = false;
   double sunlit_sum_sq = 0.0;
   std::uint64_t sunlit = 0, counted = 0, in_bounds = 0, rejected = 0;
@@ -49,9 +40,9 @@ void summarizeEstimator(const bus::Scenario& scenario, const bus::Recording& rec
         if (!e.has_covariance()) return;
         has_covariance = true;
         rejected = e.measurements_rejected();
-        const auto it = truth.find(step);
+        const auto it = truth_.find(step);
         const double t_s = static_cast<double>(e.header().sim_time_ns()) * 1e-9;
-        if (!e.valid() || it == truth.end() || t_s < scenario.acquisition_s) return;
+        if (!e.valid() || it == truth_.end() || t_s < scenario_.acquisition_s) return;
         // δθ with q_true = q_est ⊗ exp(δθ/2), the covariance's definition.
         const Eigen::Vector3d dtheta = sim::rotationVectorFromQuat(
             bus::quat(e.q_inertial_body()).normalized().conjugate() * it->second.q_NB);

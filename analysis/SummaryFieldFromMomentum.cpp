@@ -14,35 +14,27 @@ namespace flatsat::analysis {
 
 namespace {
 constexpr double kPi = 3.14159265358979323846;
-
-struct TruthAt {
-  Eigen::Vector3d b_B_T;
-  double roll_rad;  // body y in the Sun-ecliptic frame
-};
 }  // namespace
 
-void addFieldFromMomentumMetrics(nlohmann::ordered_json& summary, const bus::Scenario& scenario,
-                  const bus::Recording& recording) {
-  using FieldDef = std::remove_cvref_t<decltype(bus::topics::kFieldEstimate)>;
-  using TruthDef = std::remove_cvref_t<decltype(bus::topics::kTruth)>;
-  const std::string field_topic(bus::topics::kFieldEstimate.name);
-  if (recording.count(field_topic) == 0) return;
-
+FieldFromMomentumFigures::FieldFromMomentumFigures(const bus::Scenario& scenario, const bus::Recording& recording)
+    : scenario_(scenario), recorded_(recording.count(std::string(bus::topics::kFieldEstimate.name)) > 0) {
+  if (!recorded_) return;
   bus::ConfigProblems ignored;
-  const vehicle::Vehicle craft = vehicle::readVehicle(scenario, ignored);
-  const double jd_epoch = sim::julianDate(craft.truth.epoch);
-  std::unordered_map<std::uint64_t, TruthAt> truth;
-  recording.forEach(std::string(bus::topics::kTruth.name),
-                    [&](std::uint64_t step, const std::string&, const std::vector<std::uint8_t>& bytes) {
-                      const auto t = bus::deserialize<TruthDef>(bytes);
-                      const double jd_tt = jd_epoch + (static_cast<double>(t.header().sim_time_ns()) * 1e-9 +
-                                                       sim::kTtMinusUtc_s) / 86400.0;
-                      const Eigen::Matrix3d R_N_SE =
-                          sim::R_N_SunEcliptic(bus::vec3(t.sun_inertial_unit()), jd_tt);
-                      const Eigen::Vector3d y_SE =
-                          R_N_SE.transpose() * (bus::quat(t.q_inertial_body()) * Eigen::Vector3d::UnitY());
-                      truth[step] = {bus::vec3(t.b_body_T()), std::atan2(y_SE.z(), y_SE.y())};
-                    });
+  jd_epoch_ = sim::julianDate(vehicle::readVehicle(scenario, ignored).truth.epoch);
+}
+
+void FieldFromMomentumFigures::addTruth(std::uint64_t step, const TruthSample& t) {
+  if (!recorded_) return;
+  const double jd_tt = jd_epoch_ + (static_cast<double>(t.header().sim_time_ns()) * 1e-9 + sim::kTtMinusUtc_s) / 86400.0;
+  const Eigen::Matrix3d R_N_SE = sim::R_N_SunEcliptic(bus::vec3(t.sun_inertial_unit()), jd_tt);
+  const Eigen::Vector3d y_SE = R_N_SE.transpose() * (bus::quat(t.q_inertial_body()) * Eigen::Vector3d::UnitY());
+  truth_[step] = {bus::vec3(t.b_body_T()), std::atan2(y_SE.z(), y_SE.y())};
+}
+
+void FieldFromMomentumFigures::summarize(const bus::Recording& recording, nlohmann::ordered_json& summary) const {
+  if (!recorded_) return;
+  using FieldDef = std::remove_cvref_t<decltype(bus::topics::kFieldEstimate)>;
+  const std::string field_topic(bus::topics::kFieldEstimate.name);
   double field2 = 0.0, roll2 = 0.0;
   std::uint64_t n = 0, cycles = 0, failed = 0;
   recording.forEach(field_topic, [&](std::uint64_t step, const std::string&,
@@ -50,9 +42,9 @@ void addFieldFromMomentumMetrics(nlohmann::ordered_json& summary, const bus::Sce
     const auto f = bus::deserialize<FieldDef>(bytes);
     cycles = f.cycles();
     failed = f.failed_cycles();
-    const auto it = truth.find(step);
+    const auto it = truth_.find(step);
     const double t_s = static_cast<double>(f.header().sim_time_ns()) * 1e-9;
-    if (!f.valid() || it == truth.end() || t_s < scenario.acquisition_s) return;
+    if (!f.valid() || it == truth_.end() || t_s < scenario_.acquisition_s) return;
     const double field = (bus::vec3(f.b_body_T()) - it->second.b_B_T).norm() / it->second.b_B_T.norm();
     const double roll = std::remainder(f.roll_rad() - it->second.roll_rad, 2 * kPi);
     field2 += field * field;

@@ -32,13 +32,6 @@ void addCompletion(nlohmann::ordered_json& summary, const bus::Recording& record
                                     : std::string("the recording holds no step");
 }
 
-bool wallClockVerdict(const std::string& topic, const std::vector<std::uint8_t>& payload) {
-  if (topic != bus::topics::kFaultEvent.name) return false;
-  using EventDef = std::remove_cvref_t<decltype(bus::topics::kFaultEvent)>;
-  const std::string kind = bus::text(bus::deserialize<EventDef>(payload).kind());
-  return kind == "late" || kind == "lost" || kind == "restarted" || kind == "intruder";
-}
-
 void addTrustMetrics(nlohmann::ordered_json& summary, const bus::Recording& recording) {
   struct Counts {
     std::uint64_t rejected = 0, clamped = 0, intruders = 0;

@@ -17,13 +17,6 @@ namespace flatsat::analysis {
 /// `end_reason` ("completed", or where the recording ends).
 void addCompletion(nlohmann::ordered_json& summary, const bus::Recording& recording);
 
-/// Whether a recorded row is a verdict on the wall clock rather than a
-/// result of the simulation: a fault event of kind late, lost, restarted or
-/// intruder (a starved process, a kill, a foreign writer). The digest leaves
-/// them out, as it does health, so a rig that was held up or attacked and
-/// computed the same steps records the same digest.
-bool wallClockVerdict(const std::string& topic, const std::vector<std::uint8_t>& payload);
-
 /// From each component's last recorded health: `samples_rejected` (and by
 /// topic, over every component), `commands_clamped`, and `intruders`: the
 /// writers seen on a topic that the scenario does not declare as its

@@ -5,8 +5,9 @@
 #include <memory>
 #include <stdexcept>
 
-#include <openssl/evp.h>
 #include <sqlite3.h>
+
+#include "bus/RecordingMeta.hpp"
 
 namespace flatsat::bus {
 
@@ -36,6 +37,14 @@ std::string text(sqlite3_stmt* stmt, int column) {
   const auto* data = sqlite3_column_text(stmt, column);
   return data == nullptr ? "" : reinterpret_cast<const char*>(data);
 }
+
+/// Valid until the statement steps on.
+std::string_view textView(sqlite3_stmt* stmt, int column) {
+  const auto* data = reinterpret_cast<const char*>(sqlite3_column_text(stmt, column));
+  return data == nullptr ? std::string_view() : std::string_view(data, sqlite3_column_bytes(stmt, column));
+}
+
+const std::string kForgetDigest = std::string("DELETE FROM meta WHERE key = '") + meta::kDigest + "'";
 
 }  // namespace
 
@@ -77,7 +86,9 @@ Recording::Recording(const std::string& path, Access access) : path_(path) {
   // already holds samples (a resumed run, whose recorder looks its samples
   // up) gets it now. Without it, as after a crash, every query still
   // answers, by scanning.
-  if (holdsSamples()) exec(kCreateIndex);
+  digest_whole_ = !holdsSamples();
+  if (!digest_whole_) exec(kCreateIndex);
+  exec(kForgetDigest.c_str());  // an earlier writer's, of other samples
   const std::string one = "INSERT INTO samples VALUES (?, ?, ?, ?, ?)";
   std::string many = one;
   for (int i = 1; i < kRowsPerInsert; ++i) many += ", (?, ?, ?, ?, ?)";
@@ -101,6 +112,10 @@ Recording::~Recording() {
       writer_changed_.notify_all();
     }
     writer_.join();  // after the batch handed over last
+    try {
+      keepDigest();
+    } catch (const std::exception&) {  // a reader computes the digest again
+    }
     // The index's sort in memory, not through temporary files.
     sqlite3_exec(db_, "PRAGMA temp_store=MEMORY", nullptr, nullptr, nullptr);
     sqlite3_exec(db_, kLargeCache, nullptr, nullptr, nullptr);
@@ -213,6 +228,14 @@ void Recording::store(const Rows& rows) const {
     sqlite3_bind_blob(insert, first + 5, bytes + row.payload, static_cast<int>(row.payload_size),
                       SQLITE_STATIC);
   };
+  if (digest_whole_) {
+    for (const Rows::Row& row : rows.rows) {
+      const std::string_view topic(bytes + row.topic, row.topic_size);
+      const auto* payload = reinterpret_cast<const std::uint8_t*>(bytes + row.payload);
+      if (outsideDigest(topic, payload, row.payload_size)) continue;
+      stored_digest_.add(topic, {bytes + row.source, row.source_size}, row.step, payload, row.payload_size);
+    }
+  }
   const auto run = [this](sqlite3_stmt* insert) {
     const int rc = sqlite3_step(insert);
     sqlite3_reset(insert);
@@ -280,20 +303,23 @@ std::string Recording::meta(const std::string& key) const {
 
 void Recording::forEach(
     const std::string& topic,
-    const std::function<void(std::uint64_t, const std::string&, const std::vector<std::uint8_t>&)>&
-        visit,
-    Order order) const {
+    const std::function<void(std::uint64_t, const std::string&, const std::vector<std::uint8_t>&)>& visit) const {
   const auto lock = settle();
-  // Rows are inserted as samples arrive, so rowid is the arrival order.
-  Statement s(db_,
-              order == Order::kStep
-                  ? "SELECT step, source, payload FROM samples WHERE topic = ? ORDER BY step, source"
-                  : "SELECT step, source, payload FROM samples WHERE topic = ? ORDER BY rowid",
-              path_);
+  Statement s(db_, "SELECT step, source, payload FROM samples WHERE topic = ? ORDER BY step, source", path_);
   sqlite3_bind_text(s.stmt, 1, topic.c_str(), -1, SQLITE_TRANSIENT);
   while (sqlite3_step(s.stmt) == SQLITE_ROW) {
-    visit(static_cast<std::uint64_t>(sqlite3_column_int64(s.stmt, 0)), text(s.stmt, 1),
-          blob(s.stmt, 2));
+    visit(static_cast<std::uint64_t>(sqlite3_column_int64(s.stmt, 0)), text(s.stmt, 1), blob(s.stmt, 2));
+  }
+}
+
+void Recording::forEachStamp(const std::string& topic,
+                             const std::function<void(std::uint64_t, const std::string&)>& visit) const {
+  const auto lock = settle();
+  // Rows are inserted as samples arrive, so rowid is the arrival order.
+  Statement s(db_, "SELECT step, source FROM samples WHERE topic = ? ORDER BY rowid", path_);
+  sqlite3_bind_text(s.stmt, 1, topic.c_str(), -1, SQLITE_TRANSIENT);
+  while (sqlite3_step(s.stmt) == SQLITE_ROW) {
+    visit(static_cast<std::uint64_t>(sqlite3_column_int64(s.stmt, 0)), text(s.stmt, 1));
   }
 }
 
@@ -414,6 +440,7 @@ std::optional<std::uint64_t> Recording::lastStep(const std::string& topic) const
 void Recording::eraseAfter(std::uint64_t step) {
   const auto lock = settle();
   windows_.clear();
+  digest_whole_ = false;
   Statement s(db_, "DELETE FROM samples WHERE step > ?", path_);
   sqlite3_bind_int64(s.stmt, 1, static_cast<sqlite3_int64>(step));
   if (sqlite3_step(s.stmt) != SQLITE_DONE) {
@@ -422,39 +449,47 @@ void Recording::eraseAfter(std::uint64_t step) {
   }
 }
 
-std::string Recording::digest(
-    const std::vector<std::string>& excluded,
-    const std::function<bool(const std::string& topic, const std::vector<std::uint8_t>& payload)>& skip) const {
+std::string Recording::digest() const {
   const auto lock = settle();
-  std::unique_ptr<EVP_MD_CTX, decltype(&EVP_MD_CTX_free)> ctx(EVP_MD_CTX_new(), EVP_MD_CTX_free);
-  EVP_DigestInit_ex(ctx.get(), EVP_sha256(), nullptr);
-  Statement s(db_, "SELECT topic, source, step, payload FROM samples ORDER BY topic, source, step",
-              path_);
-  while (sqlite3_step(s.stmt) == SQLITE_ROW) {
-    const std::string topic = text(s.stmt, 0);
-    if (std::find(excluded.begin(), excluded.end(), topic) != excluded.end()) continue;
-    if (skip) {
-      const auto* bytes = static_cast<const std::uint8_t*>(sqlite3_column_blob(s.stmt, 3));
-      if (skip(topic, std::vector<std::uint8_t>(bytes, bytes + sqlite3_column_bytes(s.stmt, 3)))) continue;
+  StreamDigests digests;
+  {
+    Statement s(db_, "SELECT topic, source, step, payload FROM samples ORDER BY rowid", path_);
+    while (sqlite3_step(s.stmt) == SQLITE_ROW) {
+      const std::string_view topic = textView(s.stmt, 0);
+      const auto* payload = static_cast<const std::uint8_t*>(sqlite3_column_blob(s.stmt, 3));
+      const auto size = static_cast<std::size_t>(sqlite3_column_bytes(s.stmt, 3));
+      if (outsideDigest(topic, payload, size)) continue;
+      digests.add(topic, textView(s.stmt, 1), static_cast<std::uint64_t>(sqlite3_column_int64(s.stmt, 2)), payload,
+                  size);
     }
-    const std::string source = text(s.stmt, 1);
-    const auto step = static_cast<std::uint64_t>(sqlite3_column_int64(s.stmt, 2));
-    EVP_DigestUpdate(ctx.get(), topic.c_str(), topic.size() + 1);
-    EVP_DigestUpdate(ctx.get(), source.c_str(), source.size() + 1);
-    EVP_DigestUpdate(ctx.get(), &step, sizeof step);
-    EVP_DigestUpdate(ctx.get(), sqlite3_column_blob(s.stmt, 3),
-                     static_cast<std::size_t>(sqlite3_column_bytes(s.stmt, 3)));
   }
-  unsigned char hash[EVP_MAX_MD_SIZE];
-  unsigned int length = 0;
-  EVP_DigestFinal_ex(ctx.get(), hash, &length);
-  static const char* kHex = "0123456789abcdef";
-  std::string hex;
-  for (unsigned int i = 0; i < length; ++i) {
-    hex += kHex[hash[i] >> 4];
-    hex += kHex[hash[i] & 15];
+  for (const auto& [topic, source] : digests.unordered()) {
+    digests.restartStream(topic, source);
+    Statement s(db_, "SELECT step, payload FROM samples WHERE topic = ? AND source = ? ORDER BY step, payload", path_);
+    sqlite3_bind_text(s.stmt, 1, topic.c_str(), -1, SQLITE_TRANSIENT);
+    sqlite3_bind_text(s.stmt, 2, source.c_str(), -1, SQLITE_TRANSIENT);
+    while (sqlite3_step(s.stmt) == SQLITE_ROW) {
+      digests.addOrdered(topic, source, static_cast<std::uint64_t>(sqlite3_column_int64(s.stmt, 0)),
+                         static_cast<const std::uint8_t*>(sqlite3_column_blob(s.stmt, 1)),
+                         static_cast<std::size_t>(sqlite3_column_bytes(s.stmt, 1)));
+    }
   }
-  return hex;
+  return digests.hex();
+}
+
+std::optional<std::string> Recording::storedDigest() const {
+  const auto lock = settle();
+  if (!digest_whole_ || !stored_digest_.unordered().empty()) return std::nullopt;
+  return stored_digest_.hex();
+}
+
+void Recording::keepDigest() {
+  if (const auto digest = storedDigest()) {
+    setMeta(meta::kDigest, *digest);
+    return;
+  }
+  const auto lock = settle();
+  exec(kForgetDigest.c_str());
 }
 
 }  // namespace flatsat::bus

@@ -13,6 +13,8 @@
 #include <thread>
 #include <vector>
 
+#include "bus/RecordingDigest.hpp"
+
 struct sqlite3;
 struct sqlite3_stmt;
 
@@ -55,14 +57,16 @@ class Recording {
   void setMeta(const std::string& key, const std::string& value);
   std::string meta(const std::string& key) const;
 
-  enum class Order { kStep, kArrival };
-  /// Visits one topic's samples in step order, or in the order the recorder
-  /// received them (what an exclusive-ownership reader saw: a bridge stamps
-  /// its samples with its own, possibly older, step).
+  /// Visits one topic's samples in step order.
   void forEach(const std::string& topic,
                const std::function<void(std::uint64_t step, const std::string& source,
-                                        const std::vector<std::uint8_t>& payload)>& visit,
-               Order order = Order::kStep) const;
+                                        const std::vector<std::uint8_t>& payload)>& visit) const;
+  /// Visits the stamps of one topic's samples in the order the recorder
+  /// received them (what an exclusive-ownership reader saw: a bridge stamps
+  /// its samples with its own, possibly older, step), without their payloads: from the (topic, source, step)
+  /// index alone, where forEach(kArrival) reads the whole file.
+  void forEachStamp(const std::string& topic,
+                    const std::function<void(std::uint64_t step, const std::string& source)>& visit) const;
   /// Visits every sample of every topic in step order (then topic, source),
   /// with the simulated time it was recorded at.
   void forEachSample(const std::function<void(const std::string& topic, std::uint64_t step,
@@ -97,13 +101,18 @@ class Recording {
   };
   /// Every recorded topic's extent, in one pass over the samples.
   std::map<std::string, TopicExtent> extents() const;
-  /// SHA-256 (hex) over every sample of every topic except `excluded`, in
-  /// (topic, source, step) order: independent of arrival order and of
-  /// wall-clock topics.
-  /// `skip(topic, payload)`: further rows to leave out (none when empty).
-  std::string digest(const std::vector<std::string>& excluded,
-                     const std::function<bool(const std::string& topic, const std::vector<std::uint8_t>& payload)>&
-                         skip = {}) const;
+  /// The recording's digest (bus/RecordingDigest.hpp), from its samples as
+  /// the file holds them now: read in storage order, without a sort, and
+  /// only a stream stored out of step order read again in order.
+  std::string digest() const;
+  /// The digest of the samples this object stored, when they are every
+  /// sample the file holds: nothing when it was opened with samples in it,
+  /// erased some, or stored a stream out of order.
+  std::optional<std::string> storedDigest() const;
+  /// Writes storedDigest() to the meta table (meta key "recording_sha256"),
+  /// or removes the key when there is none: what a reader of a finished
+  /// recording takes instead of digest(). The destructor does it again.
+  void keepDigest();
 
  private:
   /// Rows queued for the writer, their text and bytes in one buffer: no
@@ -150,6 +159,9 @@ class Recording {
   void writeBatches();         ///< the writer thread
 
   std::string path_;
+  /// Of the rows store() stored, when they are the file's every row (digest_whole_).
+  mutable StreamDigests stored_digest_;
+  bool digest_whole_ = false;
   sqlite3* db_ = nullptr;
   sqlite3_stmt* insert_ = nullptr;       // one row
   sqlite3_stmt* insert_many_ = nullptr;  // kRowsPerInsert rows

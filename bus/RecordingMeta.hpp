@@ -25,6 +25,10 @@ inline constexpr const char* kResumeAfterStep = "resume_after_step";
 /// [-] written by a resumed recorder as it stops: samples of the steps up to
 /// kResumeAfterStep that differed from (or were missing in) the recording.
 inline constexpr const char* kResumeMismatches = "resume_mismatches";
+/// The recording's digest (bus/RecordingDigest.hpp) as its writer computed it
+/// while storing the samples (Recording::keepDigest); absent after a crash, a
+/// resume or samples stored out of order, when a reader computes it again.
+inline constexpr const char* kDigest = "recording_sha256";
 
 inline std::string formatSchedule(const Schedule& schedule) {
   std::string out;

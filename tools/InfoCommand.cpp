@@ -23,7 +23,8 @@ CLI::App* addInfoCommand(CLI::App& app, int& exit_code) {
   cmd->add_flag("--json", options->json, "one JSON object instead of the table");
   cmd->footer(
       "The digest is the run's recording_sha256 (summary.json): every sample but the\n"
-      "wall-clock ones. Rates are samples over the whole run's simulated span; the wall\n"
+      "wall-clock ones, computed again from the file; it exits 1 when it differs from\n"
+      "the one the recorder kept as it stored the samples (they changed since). Rates are samples over the whole run's simulated span; the wall\n"
       "duration spans the recorded health samples' clocks. Of an MCAP file it reads the\n"
       "summary and the \"flatsat\" metadata, and lists the derived channels too.");
   cmd->callback([options, &exit_code] {
@@ -35,7 +36,7 @@ CLI::App* addInfoCommand(CLI::App& app, int& exit_code) {
       } else {
         std::cout << analysis::infoTable(info);
       }
-      return 0;
+      return info.changedSinceRecorded() ? 1 : 0;
     });
   });
   return cmd;

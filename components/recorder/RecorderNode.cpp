@@ -214,6 +214,7 @@ void RecorderNode::beforeStopped() {
     spdlog::info("{}: resumed after step {}: {} samples of the steps before matched the recording, {} did not",
                  name(), *resume_after_, resume_checked_, resume_mismatches_);
   }
+  recording_.keepDigest();
   recording_.commit();
 }
 

@@ -579,6 +579,16 @@ TEST_CASE("export writes one CSV per recorded topic: a row per step, units in th
   CHECK(info["duration_wall_s"].get<double>() > 0.0);
   const auto table = tool("info " + recording);
   CHECK(table.output.find("Digest:        " + info["recording_sha256"].get<std::string>()) != std::string::npos);
+  // The recorder kept the same digest as it stored the samples; one sample changed after the run shows.
+  CHECK(info["recorder_sha256"] == info["recording_sha256"]);
+  REQUIRE(test::runCommand("sqlite3 " + recording +
+                           " \"UPDATE samples SET payload = zeroblob(length(payload)) WHERE rowid = "
+                           "(SELECT MIN(rowid) FROM samples WHERE topic = 'flatsat/gyro')\"")
+              .exit_code == 0);
+  const auto tampered = tool("info " + recording);
+  CHECK(tampered.exit_code == 1);
+  CHECK(tampered.output.find("NOT the recorder's " + info["recording_sha256"].get<std::string>()) !=
+        std::string::npos);
   CHECK(tool("info " + run + "/nothing.sqlite").exit_code == 1);
   fs::remove_all(run);
 }
