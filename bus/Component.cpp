@@ -12,6 +12,13 @@ Component::Component(Bus& bus, NodeOptions options)
                       granted(grant.header().step());
                       {
                         const auto lock = lockIfThreaded();
+                        if (options_.implied_grants && !grant.stop()) {
+                          // Ahead of the steps this component granted itself: a resend it
+                          // needs not (its inputs of that step are not in, or it would be there).
+                          if (granted_itself_ && grant.header().step() > *granted_itself_) return;
+                          implied_ = grant;
+                          if (!granted_itself_) granted_itself_ = grant.header().step();
+                        }
                         if (grant_observer_) grant_observer_(grant);
                         if (skip_through_ && grant.header().step() <= *skip_through_ && !grant.stop()) return;
                         grants_.push_back({grant.header().step(), grant.header().sim_time_ns(),
@@ -155,6 +162,7 @@ bool Component::handle(const Grant& grant, bool inputs_in) {
   dropInputsAfter(ctx.step);
   reachedStep(ctx.step);
   if (ctx.step >= grant.final_step) lastStepReached();
+  if (options_.implied_grants && ctx.step < grant.final_step) grantItself(grant);
   // Lockstep looks at the clock every 16th step only: a heartbeat a few
   // steps late tells the same, and a composed rig steps faster than the
   // clock reads it took. Paced steps follow the clock anyway.
@@ -163,6 +171,26 @@ bool Component::handle(const Grant& grant, bool inputs_in) {
     next_health_ += kHealthPeriod;
   }
   return true;
+}
+
+void Component::grantItself(const Grant& after) {
+  // The time master's grant of the next step, to the bit (TimeMaster::context):
+  // the recorder keeps it as if it had come.
+  const Grant next{after.step + 1, after.sim_time_ns + after.period_ns, after.period_ns, after.final_step, false};
+  granted(next.step);
+  const auto lock = lockIfThreaded();
+  granted_itself_ = next.step;
+  if (grant_observer_) {
+    stamp(implied_.header(), {next.step, next.sim_time_ns, next.period_ns}, text(implied_.header().source()));
+    grant_observer_(implied_);
+  }
+  grants_.push_back(next);
+}
+
+void Component::onStall(std::uint64_t /*k*/) {
+  if (!options_.implied_grants || !granted_) return;
+  rewriteOutputs();
+  done_.rewriteLast();
 }
 
 void Component::observeGrants(std::function<void(const msg::StepGrant&)> observer) {

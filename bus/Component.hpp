@@ -83,6 +83,14 @@ class Component : public Node {
   /// caller found every input of the grant's step in already (turn()).
   bool handle(const Grant& grant, bool inputs_in = false);
   Grant nextGrant();
+  /// NodeOptions::implied_grants: queues the grant of the step after `after`.
+  void grantItself(const Grant& after);
+  /// Implied grants: a step it granted itself waited bus::kResendAfter for
+  /// its inputs. The rig stalls on a sample lost to a late match (Fast DDS
+  /// #3822) somewhere, maybe one this component wrote last; it writes them
+  /// again, as a grant sent again would have it (handle()): the time master's
+  /// resend of an earlier step waits in the queue behind this step.
+  void onStall(std::uint64_t k) override;
   /// --restarted: the state of the checkpoint, if there is a usable one.
   void restoreCheckpoint();
   /// --restarted: drops the grants up to `claimed`. The process it replaces may
@@ -102,6 +110,11 @@ class Component : public Node {
   std::uint64_t steps_done_ = 0;
   std::uint64_t lockstep_grants_ = 0;  // handled, for the heartbeat's clock reads
   std::optional<std::uint64_t> granted_;  // the newest step granted
+  // NodeOptions::implied_grants, guarded by mutex_: the newest step queued
+  // (granted by the time master or by itself), and the master's grant as it
+  // wrote it (its source, period, final step) for the recorder's copies.
+  std::optional<std::uint64_t> granted_itself_;
+  msg::StepGrant implied_;
   std::string status_ = "stepping";
 };
 

@@ -70,6 +70,12 @@ struct NodeOptions {
   /// from checkpoint_file before its first step, and steps no grant its previous
   /// process claimed.
   bool restarted = false;
+  /// Lockstep over DDS with every process the launcher's (NodeArgs::shared_memory_rig):
+  /// a component grants itself step k + 1 once it is through k, as its inputs
+  /// stamped k + 1 are the permission (they come after the time master closed
+  /// k); the time master writes a grant at step 0, on a resend and at the stop
+  /// only (architecture, "Time and the step protocol").
+  bool implied_grants = false;
 };
 
 /// A FaultCmd addressed to the bus as a fault; every problem (empty: valid).

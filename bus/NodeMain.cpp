@@ -80,6 +80,10 @@ NodeOptions nodeOptions(const Scenario& scenario, const NodeArgs& args) {
     if (!args.restarted) std::filesystem::remove(options.checkpoint_file);
   }
   options.restarted = args.restarted;
+  // The launcher vouches that it started every process of the rig: each
+  // takes its grants as every other does (a foreign one, or `flatsat replay`,
+  // would wait for a grant a step).
+  options.implied_grants = args.shared_memory_rig && scenario.pacing == Pacing::kLockstep;
   return options;
 }
 
@@ -109,7 +113,8 @@ BusOptions processBusOptions(const Scenario& scenario, const NodeArgs& args,
   // talk UDP alone (on the network profile's interfaces), as a process on another host would anyway.
   const bool any_external = std::any_of(scenario.components.begin(), scenario.components.end(),
                                         [](const ComponentEntry& c) { return !c.launched; });
-  if (lockstep && any_external) {
+  // Paced as well: its data sharing and shared-memory transport take the same locks.
+  if (any_external) {
     options.shared_memory = false;
     options.tuning.data_sharing = false;
   }

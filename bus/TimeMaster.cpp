@@ -147,7 +147,15 @@ void TimeMaster::resendStep(std::uint64_t k, const std::string& missing) {
   spdlog::warn("{}: step {} stalled for {} s, granting it again; waiting for:{}", name(), k,
                std::chrono::duration_cast<std::chrono::seconds>(kResendAfter).count(), missing);
   rewriteOutputs();
-  grant_.rewriteLast();
+  writeGrant(k);
+}
+
+void TimeMaster::writeGrant(std::uint64_t k) {
+  msg::StepGrant grant;
+  stamp(grant.header(), context(k), name());
+  grant.step_period_ns(timing_.period_ns);
+  grant.final_step(timing_.final_step);
+  grant_.write(grant);
 }
 
 bool TimeMaster::Awaited::doneWith(std::uint64_t k) const {
@@ -318,11 +326,9 @@ void TimeMaster::beginStep(std::uint64_t k) {
   granted(k);
   publishFaultEvents(ctx);
   publishStep(ctx);
-  msg::StepGrant grant;
-  stamp(grant.header(), ctx, name());
-  grant.step_period_ns(timing_.period_ns);
-  grant.final_step(timing_.final_step);
-  grant_.write(grant);
+  // Implied grants: the components take step k from their inputs of k, which
+  // come once k - 1 is closed; the first grant tells them the run's timing.
+  if (!options_.implied_grants || k == 0) writeGrant(k);
 }
 
 void TimeMaster::endStep(std::uint64_t k) {

@@ -107,8 +107,9 @@ TEST_CASE("paced: a component killed mid-run is shown dead within the lease and 
   }
   CHECK(tach_seen);
 
-  INFO(test::readFile(out + ".log"));
-  REQUIRE(rigs.rig.wait(60) == 0);  // paced waits for nobody: the run completes
+  const int code = rigs.rig.wait(60);
+  INFO(test::readFile(out + ".log"));  // read after the end: the launcher's reason is in it
+  REQUIRE(code == 0);  // paced waits for nobody: the run completes
   const fs::path exported = fs::path(out) / "export";
   REQUIRE(test::runCommand(test::kFlatsat + " export " + out +
                            "/recording.sqlite --json -t fault_event -t wheel_tach -t wheel_torque_cmd -o " +
@@ -169,8 +170,9 @@ TEST_CASE("paced: a component whose steps stop is shown late within its deadline
   std::this_thread::sleep_for(std::chrono::seconds(2));
   watch.signal(SIGTERM);
   watch.wait(10);
-  INFO(test::readFile(out + ".log"));
-  REQUIRE(rig.wait(60) == 0);  // paced waits for nobody
+  const int code = rig.wait(60);
+  INFO(test::readFile(out + ".log"));  // read after the end: the launcher's reason is in it
+  REQUIRE(code == 0);  // paced waits for nobody
 
   // The operator's table showed the gyro late, and only the gyro, while it stood still.
   std::stringstream table(test::readFile(watch_log));

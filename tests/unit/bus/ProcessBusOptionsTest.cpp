@@ -82,8 +82,23 @@ TEST_CASE("a lockstep rig acknowledges over shared memory only when the launcher
   CHECK_FALSE(with_external.tuning.data_sharing);
   Scenario paced = lockstep;
   paced.pacing = Pacing::kPaced;
+  CHECK_FALSE(processBusOptions(paced, estimator, kEmulatorStrength).shared_memory);  // paced takes the locks too
   paced.components.back().launched = true;
+  CHECK(processBusOptions(paced, estimator, kEmulatorStrength).shared_memory);
   CHECK_FALSE(processBusOptions(paced, estimator, kEmulatorStrength).acks_over_shm);
+}
+
+TEST_CASE("components grant themselves their steps only in a lockstep rig the launcher started whole",
+          "[bus][step_protocol]") {
+  Scenario lockstep;
+  lockstep.pacing = Pacing::kLockstep;
+  lockstep.components = {{.name = "estimator"}};
+  CHECK(nodeOptions(lockstep, NodeArgs{.name = "estimator", .shared_memory_rig = true}).implied_grants);
+  // Started by anyone else (compose, `flatsat replay`): a grant a step, as a foreign component expects.
+  CHECK_FALSE(nodeOptions(lockstep, NodeArgs{.name = "estimator"}).implied_grants);
+  Scenario paced = lockstep;
+  paced.pacing = Pacing::kPaced;  // the wall clock grants
+  CHECK_FALSE(nodeOptions(paced, NodeArgs{.name = "estimator", .shared_memory_rig = true}).implied_grants);
 }
 
 }  // namespace flatsat::bus
