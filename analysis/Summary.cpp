@@ -15,6 +15,7 @@
 #include "bus/Topics.hpp"
 #include "components/attitude_controller/AttitudeControllerNode.hpp"
 #include "sim/Frames.hpp"
+#include "sim/Time.hpp"
 #include "analysis/Conventions.hpp"
 #include "analysis/SummaryEstimator.hpp"
 #include "analysis/SummaryMagnetic.hpp"
@@ -49,11 +50,12 @@ struct TruthFigures {
   // A wheel saturates when its momentum reaches the limit the plant holds it
   // at (sim/RigidBodyWheels.cpp); each arrival there is one event.
   std::uint64_t saturation_events = 0;
+  std::array<bool, sim::kMaxWheels> saturated{};  // at the last sample, by wheel
 };
 
 /// Adds one truth sample to what the truth says of the run.
-void addTruth(TruthFigures& f, std::array<bool, sim::kMaxWheels>& saturated, const bus::Scenario& scenario,
-              const vehicle::VehicleDescription& plant, const PointingTarget& target, const TruthSample& truth) {
+void addTruth(TruthFigures& f, const bus::Scenario& scenario, const vehicle::VehicleDescription& plant,
+              const PointingTarget& target, const TruthSample& truth) {
   const double t = static_cast<double>(truth.header().sim_time_ns()) * 1e-9;
   const double momentum = bus::vec3(truth.h_wheels_body_Nms()).norm();
   if (f.steps == 0) f.h.start = momentum;
@@ -67,8 +69,8 @@ void addTruth(TruthFigures& f, std::array<bool, sim::kMaxWheels>& saturated, con
   for (int i = 0; i < plant.body.wheel_count; ++i) {
     const double wheel_h = plant.body.wheel_inertia_kg_m2(i) * truth.wheel_speed_rad_s()[i];
     const bool at_limit = std::abs(wheel_h) >= plant.body.wheel_max_momentum_Nms(i) * (1 - 1e-9);
-    if (at_limit && !saturated[i]) ++f.saturation_events;
-    saturated[i] = at_limit;
+    if (at_limit && !f.saturated[i]) ++f.saturation_events;
+    f.saturated[i] = at_limit;
   }
   if (t < scenario.acquisition_s) return;
   const Eigen::Quaterniond q_NB = bus::quat(truth.q_inertial_body());
@@ -179,13 +181,12 @@ nlohmann::ordered_json summarize(const bus::Scenario& scenario, const std::strin
   const bus::Recording recording(recording_path, bus::Recording::Access::kRead);
   // The truth is read once, for every figure judged against it.
   TruthFigures truth;
-  std::array<bool, sim::kMaxWheels> saturated{};
   EstimatorFigures estimator(scenario);
-  FieldFromMomentumFigures field_from_momentum(scenario, recording);
+  FieldFromMomentumFigures field_from_momentum(scenario, sim::julianDate(craft.truth.epoch), recording);
   recording.forEach(std::string(bus::topics::kTruth.name),
                     [&](std::uint64_t step, const std::string&, const std::vector<std::uint8_t>& bytes) {
                       const auto sample = bus::deserialize<std::remove_cvref_t<decltype(bus::topics::kTruth)>>(bytes);
-                      addTruth(truth, saturated, scenario, plant, target, sample);
+                      addTruth(truth, scenario, plant, target, sample);
                       estimator.addTruth(step, sample);
                       field_from_momentum.addTruth(step, sample);
                     });

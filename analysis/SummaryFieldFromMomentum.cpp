@@ -8,7 +8,7 @@
 #include "bus/Serialization.hpp"
 #include "bus/Topics.hpp"
 #include "sim/Frames.hpp"
-#include "vehicle/VehicleReader.hpp"
+#include "sim/Time.hpp"
 
 namespace flatsat::analysis {
 
@@ -16,12 +16,11 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 }  // namespace
 
-FieldFromMomentumFigures::FieldFromMomentumFigures(const bus::Scenario& scenario, const bus::Recording& recording)
-    : scenario_(scenario), recorded_(recording.count(std::string(bus::topics::kFieldEstimate.name)) > 0) {
-  if (!recorded_) return;
-  bus::ConfigProblems ignored;
-  jd_epoch_ = sim::julianDate(vehicle::readVehicle(scenario, ignored).truth.epoch);
-}
+FieldFromMomentumFigures::FieldFromMomentumFigures(const bus::Scenario& scenario, double jd_epoch,
+                                                   const bus::Recording& recording)
+    : scenario_(scenario),
+      recorded_(recording.count(std::string(bus::topics::kFieldEstimate.name)) > 0),
+      jd_epoch_(jd_epoch) {}
 
 void FieldFromMomentumFigures::addTruth(std::uint64_t step, const TruthSample& t) {
   if (!recorded_) return;

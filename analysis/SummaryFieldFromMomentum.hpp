@@ -19,7 +19,8 @@ namespace flatsat::analysis {
 /// comes from the summary's one pass over it (addTruth).
 class FieldFromMomentumFigures {
  public:
-  FieldFromMomentumFigures(const bus::Scenario& scenario, const bus::Recording& recording);
+  /// `jd_epoch`: [d] the vehicle's epoch, UTC Julian date.
+  FieldFromMomentumFigures(const bus::Scenario& scenario, double jd_epoch, const bus::Recording& recording);
   void addTruth(std::uint64_t step, const TruthSample& truth);
   void summarize(const bus::Recording& recording, nlohmann::ordered_json& summary) const;
 

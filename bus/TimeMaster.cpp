@@ -150,11 +150,12 @@ void TimeMaster::resendStep(std::uint64_t k, const std::string& missing) {
   writeGrant(k);
 }
 
-void TimeMaster::writeGrant(std::uint64_t k) {
+void TimeMaster::writeGrant(std::uint64_t k, bool stop) {
   msg::StepGrant grant;
   stamp(grant.header(), context(k), name());
   grant.step_period_ns(timing_.period_ns);
   grant.final_step(timing_.final_step);
+  grant.stop(stop);
   grant_.write(grant);
 }
 
@@ -357,12 +358,7 @@ void TimeMaster::addToHealth(msg::Health& health) const {
 }
 
 void TimeMaster::stop() {
-  msg::StepGrant stop;
-  stamp(stop.header(), context(timing_.final_step + 1), name());
-  stop.step_period_ns(timing_.period_ns);
-  stop.final_step(timing_.final_step);
-  stop.stop(true);
-  grant_.write(stop);
+  writeGrant(timing_.final_step + 1, true);
   flushOutputs();
   grant_.waitForAcknowledgments(std::chrono::seconds(5));
   publishLastHealth(msg::ComponentState::STOPPED, timing_.final_step + 1, "run complete");

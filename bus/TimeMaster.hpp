@@ -94,8 +94,9 @@ class TimeMaster : public Node {
   /// Call under mutex_.
   void findLate(std::chrono::steady_clock::time_point now);
 
-  /// The grant of step k (at the start, every step without implied grants, and on a resend).
-  void writeGrant(std::uint64_t k);
+  /// The grant of step k (at the start, every step without implied grants, and on a resend),
+  /// or the stop, stamped the step after the last.
+  void writeGrant(std::uint64_t k, bool stop = false);
   StepContext context(std::uint64_t k) const {
     return {k, static_cast<std::int64_t>(k) * timing_.period_ns, timing_.period_ns};
   }
