@@ -1,9 +1,12 @@
 // SPDX-License-Identifier: Apache-2.0
 #pragma once
+#include <optional>
+
 #include <nlohmann/json.hpp>
 
-#include "bus/Recording.hpp"
+#include "analysis/TruthSample.hpp"
 #include "bus/Scenario.hpp"
+#include "vehicle/VehicleDescription.hpp"
 
 namespace flatsat::analysis {
 
@@ -16,6 +19,17 @@ namespace flatsat::analysis {
 ///    run and scaled to 365.25 days (the truth's running totals: exact in a
 ///    recording decimated in time);
 ///  - firings: burns begun per thruster, {"NW(20)": n, ...}.
-void summarizeStationKeeping(const bus::Scenario& scenario, const bus::Recording& recording, nlohmann::ordered_json& summary);
+class StationKeepingFigures {
+ public:
+  StationKeepingFigures(const bus::Scenario& scenario, const vehicle::Vehicle& craft);
+  void addTruth(const TruthSample& truth);
+  void summarize(nlohmann::ordered_json& summary) const;
+
+ private:
+  bool active_ = false;
+  double station_longitude_rad_ = 0.0, mass_kg_ = 0.0;
+  double longitude_max_ = 0.0, inclination_max_ = 0.0, eccentricity_max_ = 0.0, last_time_s_ = 0.0;
+  std::optional<TruthSample> last_;
+};
 
 }  // namespace flatsat::analysis

@@ -45,6 +45,13 @@ std::string_view textView(sqlite3_stmt* stmt, int column) {
 }
 
 const std::string kForgetDigest = std::string("DELETE FROM meta WHERE key = '") + meta::kDigest + "'";
+/// What an earlier writer kept of other samples: its digest, its figures,
+/// and its word that the index is left to a reader.
+const std::string kForgetKept = std::string("DELETE FROM meta WHERE key IN ('") + meta::kDigest + "', '" +
+                                meta::kFigures + "', '" + meta::kIndexDeferred + "')";
+const std::string kDeferIndex =
+    std::string("INSERT OR REPLACE INTO meta VALUES ('") + meta::kIndexDeferred + "', '1')";
+const std::string kForgetDeferral = std::string("DELETE FROM meta WHERE key = '") + meta::kIndexDeferred + "'";
 
 }  // namespace
 
@@ -80,15 +87,17 @@ Recording::Recording(const std::string& path, Access access) : path_(path) {
   exec("CREATE TABLE IF NOT EXISTS samples (topic TEXT NOT NULL, step INTEGER NOT NULL, "
        "source TEXT NOT NULL, sim_time_ns INTEGER NOT NULL, payload BLOB NOT NULL)");
   exec("CREATE TABLE IF NOT EXISTS meta (key TEXT PRIMARY KEY, value TEXT NOT NULL)");
-  // The (topic, source, step) index is built when the recording is closed,
-  // in one sort, rather than kept up on every insert: that upkeep was half
-  // the cost of an insert (callgrind, default scenario). A recording that
-  // already holds samples (a resumed run, whose recorder looks its samples
-  // up) gets it now. Without it, as after a crash, every query still
-  // answers, by scanning.
+  // The (topic, source, step) index is not kept up on every insert: that
+  // upkeep was half the cost of an insert (callgrind, default scenario), and
+  // kept up in a file of 64 KiB pages it rewrote them at every commit. Nor
+  // is it sorted when the recording closes (1.1 s of a composed day, whose
+  // summary the recorder accumulated without it): the first reader that
+  // needs it builds it (needIndex). A recording that already holds samples
+  // (a resumed run, whose recorder looks its samples up) gets it now.
+  // Without it, as after a crash, every query still answers, by scanning.
   digest_whole_ = !holdsSamples();
   if (!digest_whole_) exec(kCreateIndex);
-  exec(kForgetDigest.c_str());  // an earlier writer's, of other samples
+  exec(kForgetKept.c_str());
   const std::string one = "INSERT INTO samples VALUES (?, ?, ?, ?, ?)";
   std::string many = one;
   for (int i = 1; i < kRowsPerInsert; ++i) many += ", (?, ?, ?, ?, ?)";
@@ -116,10 +125,7 @@ Recording::~Recording() {
       keepDigest();
     } catch (const std::exception&) {  // a reader computes the digest again
     }
-    // The index's sort in memory, not through temporary files.
-    sqlite3_exec(db_, "PRAGMA temp_store=MEMORY", nullptr, nullptr, nullptr);
-    sqlite3_exec(db_, kLargeCache, nullptr, nullptr, nullptr);
-    sqlite3_exec(db_, kCreateIndex, nullptr, nullptr, nullptr);
+    if (digest_whole_) sqlite3_exec(db_, kDeferIndex.c_str(), nullptr, nullptr, nullptr);
     sqlite3_exec(db_, "COMMIT", nullptr, nullptr, nullptr);
   }
   sqlite3_finalize(insert_);
@@ -228,6 +234,16 @@ void Recording::store(const Rows& rows) const {
     sqlite3_bind_blob(insert, first + 5, bytes + row.payload, static_cast<int>(row.payload_size),
                       SQLITE_STATIC);
   };
+  if (observer_) {
+    for (const Rows::Row& row : rows.rows) {
+      observer_({{bytes + row.topic, row.topic_size},
+                 row.step,
+                 {bytes + row.source, row.source_size},
+                 row.sim_time_ns,
+                 reinterpret_cast<const std::uint8_t*>(bytes + row.payload),
+                 row.payload_size});
+    }
+  }
   if (digest_whole_) {
     for (const Rows::Row& row : rows.rows) {
       const std::string_view topic(bytes + row.topic, row.topic_size);
@@ -304,6 +320,7 @@ std::string Recording::meta(const std::string& key) const {
 void Recording::forEach(
     const std::string& topic,
     const std::function<void(std::uint64_t, const std::string&, const std::vector<std::uint8_t>&)>& visit) const {
+  needIndex();
   const auto lock = settle();
   Statement s(db_, "SELECT step, source, payload FROM samples WHERE topic = ? ORDER BY step, source", path_);
   sqlite3_bind_text(s.stmt, 1, topic.c_str(), -1, SQLITE_TRANSIENT);
@@ -314,12 +331,40 @@ void Recording::forEach(
 
 void Recording::forEachStamp(const std::string& topic,
                              const std::function<void(std::uint64_t, const std::string&)>& visit) const {
+  needIndex();
   const auto lock = settle();
   // Rows are inserted as samples arrive, so rowid is the arrival order.
   Statement s(db_, "SELECT step, source FROM samples WHERE topic = ? ORDER BY rowid", path_);
   sqlite3_bind_text(s.stmt, 1, topic.c_str(), -1, SQLITE_TRANSIENT);
   while (sqlite3_step(s.stmt) == SQLITE_ROW) {
     visit(static_cast<std::uint64_t>(sqlite3_column_int64(s.stmt, 0)), text(s.stmt, 1));
+  }
+}
+
+void Recording::needIndex() const {
+  if (writing_ || index_checked_) return;
+  index_checked_ = true;
+  if (meta(meta::kIndexDeferred).empty()) return;
+  sqlite3* db = nullptr;
+  if (sqlite3_open_v2(path_.c_str(), &db, SQLITE_OPEN_READWRITE | SQLITE_OPEN_NOMUTEX, nullptr) == SQLITE_OK) {
+    sqlite3_busy_timeout(db, 10'000);
+    // The sort in memory, not through temporary files.
+    const std::string build = std::string("PRAGMA temp_store=MEMORY; ") + kLargeCache + "; BEGIN IMMEDIATE; " +
+                              kCreateIndex + "; " + kForgetDeferral + "; COMMIT";
+    if (sqlite3_exec(db, build.c_str(), nullptr, nullptr, nullptr) != SQLITE_OK) {
+      sqlite3_exec(db, "ROLLBACK", nullptr, nullptr, nullptr);  // read-only after all: the queries scan
+    }
+  }
+  sqlite3_close(db);
+}
+
+void Recording::forEachStored(const std::function<void(const StoredSample&)>& visit) const {
+  const auto lock = settle();
+  Statement s(db_, "SELECT topic, step, source, sim_time_ns, payload FROM samples ORDER BY rowid", path_);
+  while (sqlite3_step(s.stmt) == SQLITE_ROW) {
+    visit({textView(s.stmt, 0), static_cast<std::uint64_t>(sqlite3_column_int64(s.stmt, 1)), textView(s.stmt, 2),
+           sqlite3_column_int64(s.stmt, 3), static_cast<const std::uint8_t*>(sqlite3_column_blob(s.stmt, 4)),
+           static_cast<std::size_t>(sqlite3_column_bytes(s.stmt, 4))});
   }
 }
 
@@ -338,6 +383,7 @@ void Recording::forEachSample(
 void Recording::forEachAt(
     const std::string& topic, std::uint64_t step,
     const std::function<void(const std::string&, const std::vector<std::uint8_t>&)>& visit) const {
+  needIndex();
   const auto lock = settle();
   Statement s(db_, "SELECT source, payload FROM samples WHERE topic = ? AND step = ? ORDER BY source",
               path_);
@@ -397,6 +443,7 @@ bool Recording::Window::holds(std::uint64_t step, const std::vector<std::uint8_t
 }
 
 std::map<std::string, std::set<std::string>> Recording::topicSources() const {
+  needIndex();
   const auto lock = settle();
   Statement s(db_, "SELECT DISTINCT topic, source FROM samples", path_);
   std::map<std::string, std::set<std::string>> out;
@@ -405,6 +452,7 @@ std::map<std::string, std::set<std::string>> Recording::topicSources() const {
 }
 
 std::uint64_t Recording::count(const std::string& topic) const {
+  needIndex();
   const auto lock = settle();
   Statement s(db_, "SELECT COUNT(*) FROM samples WHERE topic = ?", path_);
   sqlite3_bind_text(s.stmt, 1, topic.c_str(), -1, SQLITE_TRANSIENT);
@@ -412,6 +460,7 @@ std::uint64_t Recording::count(const std::string& topic) const {
 }
 
 std::map<std::string, Recording::TopicExtent> Recording::extents() const {
+  needIndex();
   const auto lock = settle();
   Statement s(db_,
               "SELECT topic, COUNT(*), MIN(step), MAX(step), MIN(sim_time_ns), MAX(sim_time_ns) FROM samples "
@@ -430,6 +479,7 @@ std::map<std::string, Recording::TopicExtent> Recording::extents() const {
 }
 
 std::optional<std::uint64_t> Recording::lastStep(const std::string& topic) const {
+  needIndex();
   const auto lock = settle();
   Statement s(db_, "SELECT MAX(step) FROM samples WHERE topic = ?", path_);
   sqlite3_bind_text(s.stmt, 1, topic.c_str(), -1, SQLITE_TRANSIENT);

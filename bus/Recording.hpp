@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "bus/RecordingDigest.hpp"
+#include "bus/StoredSample.hpp"
 
 struct sqlite3;
 struct sqlite3_stmt;
@@ -54,6 +55,14 @@ class Recording {
   /// samples of steps it has not reached yet; a crash then still leaves a
   /// recording that ends at a step boundary.
   void commitInBackgroundThrough(std::uint64_t step);
+  /// Hands `observer` every row this object stores, in storage order, on
+  /// the writer's thread (or the caller's, when a read settles the queue):
+  /// what the recorder accumulates while the run steps (summary figures).
+  /// Set before the first insert; an observer must not throw.
+  void observeStored(std::function<void(const StoredSample&)> observer) { observer_ = std::move(observer); }
+  /// Whether every sample in the file is one this object stored (a new file,
+  /// nothing erased): then what an observer saw is the whole recording.
+  bool storedEverySample() const { return digest_whole_; }
   void setMeta(const std::string& key, const std::string& value);
   std::string meta(const std::string& key) const;
 
@@ -67,6 +76,9 @@ class Recording {
   /// index alone, where forEach(kArrival) reads the whole file.
   void forEachStamp(const std::string& topic,
                     const std::function<void(std::uint64_t step, const std::string& source)>& visit) const;
+  /// Visits every sample in storage order (the order the recorder stored
+  /// them in), in one pass over the file and without its index.
+  void forEachStored(const std::function<void(const StoredSample&)>& visit) const;
   /// Visits every sample of every topic in step order (then topic, source),
   /// with the simulated time it was recorded at.
   void forEachSample(const std::function<void(const std::string& topic, std::uint64_t step,
@@ -149,6 +161,10 @@ class Recording {
   };
   void exec(const char* sql) const;
   bool holdsSamples() const;
+  /// Before a query that reads by (topic, source, step): builds the index a
+  /// new recording's writer left to its first reader (meta::kIndexDeferred),
+  /// when this process may write the file; otherwise the query scans.
+  void needIndex() const;
   void store(const Rows& rows) const;
   /// Takes the connection from the writer: waits until it is idle, then
   /// stores the queued rows. The lock keeps the writer idle while it is held.
@@ -162,6 +178,8 @@ class Recording {
   /// Of the rows store() stored, when they are the file's every row (digest_whole_).
   mutable StreamDigests stored_digest_;
   bool digest_whole_ = false;
+  std::function<void(const StoredSample&)> observer_;
+  mutable bool index_checked_ = false;
   sqlite3* db_ = nullptr;
   sqlite3_stmt* insert_ = nullptr;       // one row
   sqlite3_stmt* insert_many_ = nullptr;  // kRowsPerInsert rows

@@ -29,6 +29,12 @@ inline constexpr const char* kResumeMismatches = "resume_mismatches";
 /// while storing the samples (Recording::keepDigest); absent after a crash, a
 /// resume or samples stored out of order, when a reader computes it again.
 inline constexpr const char* kDigest = "recording_sha256";
+/// The summary's figures of the samples (analysis/RunFigures.hpp, JSON) as
+/// the recorder accumulated them while storing; absent when the digest is.
+inline constexpr const char* kFigures = "summary_figures";
+/// "1": the writer of a new recording left its (topic, source, step) index
+/// to the first reader that needs it (bus::Recording::needIndex).
+inline constexpr const char* kIndexDeferred = "index_deferred";
 
 inline std::string formatSchedule(const Schedule& schedule) {
   std::string out;

@@ -43,17 +43,26 @@ std::vector<std::uint8_t> serialize(const typename Def::Type& sample) {
 /// The sample of those bytes; throws std::runtime_error (never a decoder's
 /// own exception) when they do not decode.
 template <class Def>
-typename Def::Type deserialize(const std::vector<std::uint8_t>& bytes) {
-  GuardedType<typename Def::PubSubType> type;
-  eprosima::fastrtps::rtps::SerializedPayload_t payload(static_cast<std::uint32_t>(bytes.size()));
-  std::copy(bytes.begin(), bytes.end(), payload.data);
-  payload.length = static_cast<std::uint32_t>(bytes.size());
+typename Def::Type deserialize(const std::uint8_t* data, std::size_t size) {
+  // One type and payload per thread, as in serializeInto(): a summary
+  // decodes a sample of every recorded step.
+  thread_local GuardedType<typename Def::PubSubType> type;
+  thread_local eprosima::fastrtps::rtps::SerializedPayload_t payload;
+  if (payload.max_size < size) payload.reserve(static_cast<std::uint32_t>(size));
+  if (size > 0) std::memcpy(payload.data, data, size);
+  payload.length = static_cast<std::uint32_t>(size);
+  payload.pos = 0;
   typename Def::Type sample;
   if (!type.deserialize(&payload, &sample)) {
     throw std::runtime_error("recorded payload does not decode as " +
                              std::string(type.getName()));
   }
   return sample;
+}
+
+template <class Def>
+typename Def::Type deserialize(const std::vector<std::uint8_t>& bytes) {
+  return deserialize<Def>(bytes.data(), bytes.size());
 }
 
 }  // namespace flatsat::bus

@@ -26,6 +26,7 @@
 #include "tools/CmdCommand.hpp"
 #include "rig/ComposedRun.hpp"
 #include "analysis/Conventions.hpp"
+#include "analysis/RunFigures.hpp"
 #include "tools/EchoCommand.hpp"
 #include "tools/ExportCommand.hpp"
 #include "tools/FieldCommand.hpp"
@@ -679,6 +680,7 @@ int main(int argc, char** argv) {
   auto logger = spdlog::stderr_color_mt("flatsat");
   spdlog::set_default_logger(logger);
   bus::installShutdownHandlers();
+  analysis::recordRunFigures();  // a composed rig's recorder accumulates the summary
 
   CLI::App app{"flatsat: a flight-network attitude and orbit control rig"};
   app.require_subcommand(1);

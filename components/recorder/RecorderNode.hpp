@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 #pragma once
+#include <chrono>
 #include <functional>
 #include <map>
 #include <memory>
@@ -11,6 +12,7 @@
 #include "bus/LiveFeed.hpp"
 #include "bus/NodeMain.hpp"
 #include "bus/Recording.hpp"
+#include "components/recorder/SampleFigures.hpp"
 
 namespace flatsat::recorder {
 
@@ -22,6 +24,9 @@ struct RecorderParams {
   /// recorder still waits for every sample. 1: every step.
   std::uint32_t record_every_steps = 1;
   std::map<std::string, std::string> meta;  // about the rig (bus/RecordingMeta.hpp)
+  /// The summary's figures, accumulated as samples are stored and kept in the
+  /// meta table (bus::meta::kFigures); none: the summary reads them back.
+  std::shared_ptr<SampleFigures> figures;
   std::vector<std::string> validate() const;
 };
 
@@ -87,6 +92,8 @@ class RecorderNode final : public bus::Component {
   std::map<std::string, std::uint32_t> producer_dividers_;  // of every recorded stepped topic
   std::optional<std::uint64_t> resume_after_;  // --resume: steps the recording holds already
   std::uint64_t resume_checked_ = 0, resume_mismatches_ = 0;
+  std::chrono::steady_clock::time_point last_commit_ = std::chrono::steady_clock::now();
+  std::string figures_failure_;  // why the figures stopped: the summary then reads them back
 };
 
 /// components.<name>; the file goes to the run directory (--out).

@@ -10,9 +10,11 @@
 
 #include <catch2/catch.hpp>
 
+#include "analysis/RunFigures.hpp"
 #include "analysis/Summary.hpp"
 #include "bus/Convert.hpp"
 #include "bus/Recording.hpp"
+#include "bus/RecordingMeta.hpp"
 #include "bus/Serialization.hpp"
 #include "bus/Topics.hpp"
 
@@ -93,6 +95,60 @@ TEST_CASE("summary.json's pointing, momentum, saturation and completion from a h
   CHECK(s["wheel_momentum_fraction_max"].get<double>() == Approx(0.1));
   CHECK(s["wheel_saturation_events"] == 2);
   CHECK(s["wheel_commands_late"] == 3);
+}
+
+TEST_CASE("the estimator's figures, accumulated as a recorder stores the samples, are those read back",
+          "[analysis]") {
+  const Workspace w;
+  const bus::Scenario scenario = shortScenario(w);
+  // Truth at the identity, the estimate 1 mrad off about x: attitude error
+  // θ = 1e-3 rad and NEES θ²/σ², 1 with σ = 1 mrad (steps < 15, inside
+  // χ²_3's 95 % bounds) and 100 with σ = 0.1 mrad (steps ≥ 15, outside).
+  const double theta = 1e-3;
+  const auto record = [&](const std::string& path, bool as_recorder) {
+    bus::Recording r(path, bus::Recording::Access::kCreate);
+    analysis::RunFigures figures(scenario);
+    if (as_recorder) r.observeStored([&figures](const bus::StoredSample& s) { figures.add(s); });
+    for (std::uint64_t k = 0; k <= 20; ++k) {
+      msg::TruthState truth;
+      bus::put(truth.q_inertial_body(), Eigen::Quaterniond::Identity());
+      bus::put(truth.sun_inertial_unit(), Eigen::Vector3d::UnitX());
+      truth.illumination(k % 2 == 0 ? 1.0 : 0.5);  // sunlit at the even steps only
+      msg::AttitudeEstimate estimate;
+      bus::put(estimate.q_inertial_body(), Eigen::Quaterniond(Eigen::AngleAxisd(theta, Eigen::Vector3d::UnitX())));
+      estimate.valid(true);
+      estimate.has_covariance(true);
+      const double sigma = k < 15 ? 1e-3 : 1e-4;
+      for (int i = 0; i < 3; ++i) estimate.attitude_cov_body_rad2()[4 * i] = sigma * sigma;
+      estimate.measurements_rejected(k);
+      // As samples arrive: the estimate before the truth of its step, or after.
+      if (k % 2 == 0) put(r, bus::topics::kAttitudeEstimate, k, estimate);
+      put(r, bus::topics::kTruth, k, truth);
+      if (k % 2 == 1) put(r, bus::topics::kAttitudeEstimate, k, estimate);
+      msg::StepGrant grant;
+      grant.final_step(20);
+      put(r, bus::topics::kStepGrant, k, grant);
+    }
+    r.commit();
+    if (as_recorder) r.setMeta(bus::meta::kFigures, figures.json());
+  };
+  const std::string kept_path = (w.dir / "kept.sqlite").string(), read_path = (w.dir / "read.sqlite").string();
+  record(kept_path, true);
+  record(read_path, false);
+  REQUIRE_FALSE(bus::Recording(kept_path, bus::Recording::Access::kRead).meta(bus::meta::kFigures).empty());
+  REQUIRE(bus::Recording(read_path, bus::Recording::Access::kRead).meta(bus::meta::kFigures).empty());
+  auto kept = analysis::summarize(scenario, kept_path, analysis::RunOutcome{});
+  auto read = analysis::summarize(scenario, read_path, analysis::RunOutcome{});
+  INFO(kept.dump(2));
+  // From 1 s on (steps 10..20): 11 estimates, 5 in bounds, the 6 sunlit ones all θ off.
+  CHECK(kept["attitude_error_deg_3sigma"].get<double>() == Approx(3.0 * theta / kDeg).epsilon(1e-9));
+  CHECK(kept["nees_in_bounds_fraction"].get<double>() == Approx(5.0 / 11.0).epsilon(1e-12));
+  CHECK(kept["estimator_measurements_rejected"] == 20);
+  CHECK(kept["completed"] == true);
+  CHECK(kept["steps"] == 21);
+  kept.erase("recording");
+  read.erase("recording");
+  CHECK(kept == read);
 }
 
 TEST_CASE("a recording that stops short of the final step is not a completed run", "[analysis]") {

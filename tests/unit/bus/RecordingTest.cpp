@@ -6,8 +6,10 @@
 #include <unistd.h>
 
 #include "bus/Recording.hpp"
+#include "bus/RecordingMeta.hpp"
 
 using flatsat::bus::Recording;
+namespace meta = flatsat::bus::meta;
 
 namespace {
 
@@ -172,6 +174,34 @@ TEST_CASE("A recording still open (as after a crash) answers without its index, 
   CHECK(visit(closed, Order::kStep) == seen_open);
   CHECK(seen_open.front() == std::make_pair(std::uint64_t{0}, std::string("a")));
   CHECK(seen_open.back() == std::make_pair(std::uint64_t{3}, std::string("b")));
+  std::filesystem::remove(path);
+  std::filesystem::remove(path.string() + "-wal");
+  std::filesystem::remove(path.string() + "-shm");
+}
+
+TEST_CASE("A new recording's index is built by its first reader that needs it, once", "[bus][recording]") {
+  const auto path = std::filesystem::temp_directory_path() /
+                    ("flatsat-recording-deferred-" + std::to_string(::getpid()) + ".sqlite");
+  std::filesystem::remove(path);
+  {
+    Recording writer(path.string(), Recording::Access::kCreate);
+    for (std::uint64_t step = 0; step < 50; ++step) writer.insert("t", 49 - step, "a", 0, {1});
+  }
+  {
+    const Recording reader(path.string(), Recording::Access::kRead);
+    CHECK(reader.meta(meta::kIndexDeferred) == "1");  // closed without the index's sort
+    CHECK(reader.digest().size() == 64);              // read in storage order: no index needed
+    CHECK(reader.meta(meta::kIndexDeferred) == "1");
+    CHECK(reader.count("t") == 50);  // by (topic, source, step): built now
+    CHECK(reader.meta(meta::kIndexDeferred).empty());
+    CHECK(visit(reader, Order::kStep).front().first == 0);
+  }
+  {
+    // Opened again to write (a resumed run): nothing left to defer.
+    Recording writer(path.string(), Recording::Access::kCreate);
+    writer.insert("t", 50, "a", 0, {1});
+  }
+  CHECK(Recording(path.string(), Recording::Access::kRead).meta(meta::kIndexDeferred).empty());
   std::filesystem::remove(path);
   std::filesystem::remove(path.string() + "-wal");
   std::filesystem::remove(path.string() + "-shm");
