@@ -330,6 +330,14 @@ void TimeMaster::beginStep(std::uint64_t k) {
   // Implied grants: the components take step k from their inputs of k, which
   // come once k - 1 is closed; the first grant tells them the run's timing.
   if (!options_.implied_grants || k == 0) writeGrant(k);
+  // Heartbeat (counts stay current) after the grant, never between a tick and
+  // it: paced at 100 Hz, the one step in a hundred that carried it was granted
+  // 220 to 620 µs late, the 99th percentile's whole excess. Lockstep reads
+  // the clock every 16th step, as Component::handle.
+  if ((paced() || k % 16 == 0) && std::chrono::steady_clock::now() > next_health_) {
+    publishHealth(msg::ComponentState::RUNNING, k, "granting steps");
+    next_health_ += kHealthPeriod;
+  }
 }
 
 void TimeMaster::endStep(std::uint64_t k) {
@@ -343,11 +351,6 @@ void TimeMaster::endStep(std::uint64_t k) {
   dropInputsAfter(k);
   reachedStep(k);
   if (k >= timing_.final_step) lastStepReached();
-  // Heartbeat (counts stay current); lockstep reads the clock every 16th step, as Component::handle.
-  if ((paced() || k % 16 == 0) && std::chrono::steady_clock::now() > next_health_) {
-    publishHealth(msg::ComponentState::RUNNING, k + 1, "granting steps");
-    next_health_ += kHealthPeriod;
-  }
 }
 
 void TimeMaster::addToHealth(msg::Health& health) const {
