@@ -104,6 +104,9 @@ class TimeMaster : public Node {
   Timing timing_;
   std::chrono::steady_clock::time_point start_;        // of step 0 (paced ticks)
   std::chrono::steady_clock::time_point next_health_;  // heartbeat
+  /// The step whose close a heartbeat tells (reached and granted it), due
+  /// and written after the next grant rather than before it.
+  std::optional<std::uint64_t> heartbeat_closed_;
   /// Each component the master waits for and the newest step it reported
   /// done. Lockstep grants k+1 only after its inputs of k and the reports
   /// StepReports asks for, and a component steps in order, so "done with
