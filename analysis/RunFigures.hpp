@@ -25,7 +25,10 @@ class RunFigures final : public recorder::SampleFigures {
   explicit RunFigures(const bus::Scenario& scenario);
   ~RunFigures() override;
   void add(const bus::StoredSample& sample) override;
-  std::string json() const override { return figures().dump(); }
+  /// Names from the bus that are not UTF-8 (a foreign writer's) are kept with U+FFFD, never a throw.
+  std::string json() const override {
+    return figures().dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace);
+  }
   /// Groups of summary keys by what they judge: "extent", "completion",
   /// "truth", "timing", "ownership", "lateness", "trust", "s0", "magnetic",
   /// "aero", "station_keeping", "estimator", "thruster"; summarize() lays

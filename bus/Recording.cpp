@@ -125,6 +125,20 @@ Recording::~Recording() {
       keepDigest();
     } catch (const std::exception&) {  // a reader computes the digest again
     }
+    if (keep_on_close_) {
+      std::string value;
+      try {
+        if (digest_whole_) value = keep_on_close_();
+      } catch (const std::exception&) {  // nothing kept: a reader computes it from the rows
+      }
+      sqlite3_stmt* kept = nullptr;
+      const char* sql = value.empty() ? "DELETE FROM meta WHERE key = ?1" : "INSERT OR REPLACE INTO meta VALUES (?1, ?2)";
+      sqlite3_prepare_v2(db_, sql, -1, &kept, nullptr);
+      sqlite3_bind_text(kept, 1, keep_on_close_key_.c_str(), -1, SQLITE_TRANSIENT);
+      if (!value.empty()) sqlite3_bind_text(kept, 2, value.c_str(), -1, SQLITE_TRANSIENT);
+      sqlite3_step(kept);  // failing, the key is as the writer's last read left it
+      sqlite3_finalize(kept);
+    }
     if (digest_whole_) sqlite3_exec(db_, kDeferIndex.c_str(), nullptr, nullptr, nullptr);
     sqlite3_exec(db_, "COMMIT", nullptr, nullptr, nullptr);
   }

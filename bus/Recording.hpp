@@ -63,6 +63,15 @@ class Recording {
   /// Whether every sample in the file is one this object stored (a new file,
   /// nothing erased): then what an observer saw is the whole recording.
   bool storedEverySample() const { return digest_whole_; }
+  /// As the recording closes, after its last row is stored: `value()` goes
+  /// to the meta table under `key` when storedEverySample(), or the key is
+  /// removed when the value is empty. What an observer accumulated then
+  /// includes the rows that came after the writer's last read (the
+  /// components' final health, which comes as the rig stops).
+  void keepOnClose(std::string key, std::function<std::string()> value) {
+    keep_on_close_key_ = std::move(key);
+    keep_on_close_ = std::move(value);
+  }
   void setMeta(const std::string& key, const std::string& value);
   std::string meta(const std::string& key) const;
 
@@ -179,6 +188,8 @@ class Recording {
   mutable StreamDigests stored_digest_;
   bool digest_whole_ = false;
   std::function<void(const StoredSample&)> observer_;
+  std::string keep_on_close_key_;
+  std::function<std::string()> keep_on_close_;
   mutable bool index_checked_ = false;
   sqlite3* db_ = nullptr;
   sqlite3_stmt* insert_ = nullptr;       // one row

@@ -101,6 +101,7 @@ RecorderNode::RecorderNode(bus::Bus& bus, bus::NodeOptions options, const Record
         params_.figures.reset();
       }
     });
+    recording_.keepOnClose(bus::meta::kFigures, [this] { return figuresJson(); });
   }
   for (const auto& [key, value] : params.meta) recording_.setMeta(key, value);
   if (const auto after = recording_.meta(bus::meta::kResumeAfterStep); !after.empty()) {
@@ -249,11 +250,18 @@ void RecorderNode::beforeStopped() {
   if (!figures_failure_.empty()) {
     spdlog::warn("{}: the summary's figures stopped ({}); the summary reads them from the recording", name(),
                  figures_failure_);
-  } else if (params_.figures && recording_.storedEverySample()) {
-    recording_.setMeta(bus::meta::kFigures, params_.figures->json());
+  }
+  // For a launcher on another host, which summarises as this recorder stops;
+  // kept again as the recording closes, with the rig's last health.
+  if (const std::string figures = figuresJson(); !figures.empty() && recording_.storedEverySample()) {
+    recording_.setMeta(bus::meta::kFigures, figures);
   }
   recording_.keepDigest();
   recording_.commit();
+}
+
+std::string RecorderNode::figuresJson() const {
+  return figures_failure_.empty() && params_.figures ? params_.figures->json() : std::string();
 }
 
 RecorderParams readParams(const bus::Scenario& scenario, const bus::NodeArgs& args,

@@ -75,6 +75,9 @@ class RecorderNode final : public bus::Component {
   /// Under bus faults (bus/BusFaults.hpp): which sample the consuming readers
   /// of each faulted topic hold at this step (flatsat/bus_delivery rows).
   void recordDeliveries(const bus::StepContext& ctx);
+  /// The summary's figures so far as JSON; empty when there are none (no
+  /// analysis in this program) or they stopped on a sample they could not take.
+  std::string figuresJson() const;
   /// Whether a stepped sample or grant stamped `step` goes into the recording.
   bool recorded(std::uint64_t step) const { return step % params_.record_every_steps == 0; }
 

@@ -207,6 +207,30 @@ TEST_CASE("A new recording's index is built by its first reader that needs it, o
   std::filesystem::remove(path.string() + "-shm");
 }
 
+TEST_CASE("What an observer counted is kept as the recording closes, its last rows included", "[bus][recording]") {
+  const auto path = std::filesystem::temp_directory_path() /
+                    ("flatsat-recording-observed-" + std::to_string(::getpid()) + ".sqlite");
+  std::filesystem::remove(path);
+  const auto write = [&path](int rows, int after_commit) {
+    int seen = 0;
+    Recording writer(path.string(), Recording::Access::kCreate);
+    writer.observeStored([&seen](const flatsat::bus::StoredSample&) { ++seen; });
+    writer.keepOnClose("seen", [&seen] { return std::to_string(seen); });
+    for (int i = 0; i < rows; ++i) writer.insert("t", static_cast<std::uint64_t>(i), "a", 0, {1});
+    writer.commit();
+    // As the rig's last health comes: after the recorder's last commit.
+    for (int i = 0; i < after_commit; ++i) writer.insert("h", 0, "b", 0, {2});
+  };
+  write(3, 2);
+  CHECK(Recording(path.string(), Recording::Access::kRead).meta("seen") == "5");
+  // Opened again with samples in it: what it saw is not the whole recording.
+  write(1, 0);
+  CHECK(Recording(path.string(), Recording::Access::kRead).meta("seen").empty());
+  std::filesystem::remove(path);
+  std::filesystem::remove(path.string() + "-wal");
+  std::filesystem::remove(path.string() + "-shm");
+}
+
 TEST_CASE("A recording's writer thread keeps arrival order and hides nothing from reads or other readers",
           "[bus][recording]") {
   const auto path = std::filesystem::temp_directory_path() /
