@@ -125,10 +125,10 @@ class OwnershipFigures {
     });
   }
 
-  /// False for a topic that is not stepped.
-  bool add(std::string_view topic, std::uint64_t step, std::string_view source) {
+  /// A sample of a topic that is not stepped counts for nothing.
+  void add(std::string_view topic, std::uint64_t step, std::string_view source) {
     const auto it = std::find_if(topics_.begin(), topics_.end(), [&](const auto& t) { return t.first == topic; });
-    if (it == topics_.end()) return false;
+    if (it == topics_.end()) return;
     Owners& o = it->second;
     if (!o.previous.empty() && source != o.previous) {
       // gap_s: from the old owner's last sample to the new owner's first, the
@@ -146,7 +146,6 @@ class OwnershipFigures {
     }
     o.previous = source;
     o.previous_step = step;
-    return true;
   }
 
   nlohmann::ordered_json figures() const {

@@ -44,7 +44,6 @@ std::string_view textView(sqlite3_stmt* stmt, int column) {
   return data == nullptr ? std::string_view() : std::string_view(data, sqlite3_column_bytes(stmt, column));
 }
 
-const std::string kForgetDigest = std::string("DELETE FROM meta WHERE key = '") + meta::kDigest + "'";
 /// What an earlier writer kept of other samples: its digest, its figures,
 /// and its word that the index is left to a reader.
 const std::string kForgetKept = std::string("DELETE FROM meta WHERE key IN ('") + meta::kDigest + "', '" +
@@ -126,18 +125,15 @@ Recording::~Recording() {
     } catch (const std::exception&) {  // a reader computes the digest again
     }
     if (keep_on_close_) {
-      std::string value;
       try {
-        if (digest_whole_) value = keep_on_close_();
-      } catch (const std::exception&) {  // nothing kept: a reader computes it from the rows
+        const std::string value = digest_whole_ ? keep_on_close_() : std::string();
+        if (value.empty()) {
+          forgetMeta(keep_on_close_key_);
+        } else {
+          setMeta(keep_on_close_key_, value);
+        }
+      } catch (const std::exception&) {  // the key stays as the writer's last read left it
       }
-      sqlite3_stmt* kept = nullptr;
-      const char* sql = value.empty() ? "DELETE FROM meta WHERE key = ?1" : "INSERT OR REPLACE INTO meta VALUES (?1, ?2)";
-      sqlite3_prepare_v2(db_, sql, -1, &kept, nullptr);
-      sqlite3_bind_text(kept, 1, keep_on_close_key_.c_str(), -1, SQLITE_TRANSIENT);
-      if (!value.empty()) sqlite3_bind_text(kept, 2, value.c_str(), -1, SQLITE_TRANSIENT);
-      sqlite3_step(kept);  // failing, the key is as the writer's last read left it
-      sqlite3_finalize(kept);
     }
     if (digest_whole_) sqlite3_exec(db_, kDeferIndex.c_str(), nullptr, nullptr, nullptr);
     sqlite3_exec(db_, "COMMIT", nullptr, nullptr, nullptr);
@@ -552,8 +548,16 @@ void Recording::keepDigest() {
     setMeta(meta::kDigest, *digest);
     return;
   }
+  forgetMeta(meta::kDigest);
+}
+
+void Recording::forgetMeta(const std::string& key) {
   const auto lock = settle();
-  exec(kForgetDigest.c_str());
+  Statement s(db_, "DELETE FROM meta WHERE key = ?", path_);
+  sqlite3_bind_text(s.stmt, 1, key.c_str(), -1, SQLITE_TRANSIENT);
+  if (sqlite3_step(s.stmt) != SQLITE_DONE) {
+    throw std::runtime_error(path_ + ": cannot remove meta " + key + ": " + sqlite3_errmsg(db_));
+  }
 }
 
 }  // namespace flatsat::bus

@@ -73,6 +73,7 @@ class Recording {
     keep_on_close_ = std::move(value);
   }
   void setMeta(const std::string& key, const std::string& value);
+  void forgetMeta(const std::string& key);
   std::string meta(const std::string& key) const;
 
   /// Visits one topic's samples in step order.
