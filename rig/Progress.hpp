@@ -112,18 +112,29 @@ class Progress {
   bool keep_arrivals_;
   mutable std::mutex arrivals_mutex_;
   std::vector<std::pair<std::uint64_t, std::chrono::steady_clock::time_point>> arrivals_;
+  /// Steps between clock reads when only the stepping is timed: a composed
+  /// rig delivers about 170,000 grants a second, and reading the clock at
+  /// each was 1.4 % of its CPU (perf). The first and the final grant are
+  /// always timed, so stepSeconds() is exact; the progress line lags by at
+  /// most this many steps.
+  static constexpr std::uint64_t kTimedEvery = 256;
+
   void granted(const msg::StepGrant& g) {
     if (g.stop()) return;
-    const auto now = std::chrono::steady_clock::now();
-    if (keep_arrivals_) {
-      const std::lock_guard lock(arrivals_mutex_);
-      arrivals_.emplace_back(g.header().step(), now);
+    const std::uint64_t step = g.header().step();
+    const bool first = steps_.load(std::memory_order_relaxed) == 0;
+    if (keep_arrivals_ || first || step % kTimedEvery == 0 || step >= g.final_step()) {
+      const auto now = std::chrono::steady_clock::now();
+      if (keep_arrivals_) {
+        const std::lock_guard lock(arrivals_mutex_);
+        arrivals_.emplace_back(step, now);
+      }
+      if (first) first_ = now;
+      last_ = now;
     }
-    if (steps_.load() == 0) first_ = now;
-    last_ = now;
-    final_step_ = g.final_step();
-    period_ns_ = g.step_period_ns();
-    steps_.store(g.header().step() + 1);
+    final_step_.store(g.final_step(), std::memory_order_relaxed);
+    period_ns_.store(g.step_period_ns(), std::memory_order_relaxed);
+    steps_.store(step + 1);
   }
   void masterReported(const msg::Health& h) {
     if (bus::text(h.header().source()) != bus::topics::kStepGrant.producer) return;

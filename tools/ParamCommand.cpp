@@ -47,14 +47,24 @@ std::map<std::string, Announced> announcements(ToolBus& tool_bus, const std::str
         heard[bus::text(state.header().source())] = std::move(a);
       });
   const auto start = Clock::now();
+  auto changed = start;  // when the count of writers or of announcements last moved
+  std::pair<std::size_t, std::size_t> counts{0, 0};
   while (Clock::now() - start < std::chrono::duration<double>(kDiscoverySeconds)) {
     {
       std::lock_guard lock(mutex);
       if (!only.empty() && heard.count(only)) break;
       std::size_t writers = 0;
       for (const auto& w : tool_bus.writers()) writers += w.alive && w.topic == bus::topics::kParamState.name ? 1 : 0;
-      // Writers announce themselves 0..3 s after a tool joins: a full count needs a second of quiet first.
-      if (only.empty() && !heard.empty() && heard.size() >= writers && Clock::now() - start > std::chrono::seconds(2)) {
+      const auto now = Clock::now();
+      if (std::pair{writers, heard.size()} != counts) {
+        counts = {writers, heard.size()};
+        changed = now;
+      }
+      // Writers are discovered 0..3 s after a tool joins, one by one on a busy
+      // machine: every writer heard is a full count only after a second in
+      // which neither count moved.
+      if (only.empty() && !heard.empty() && heard.size() >= writers && now - start > std::chrono::seconds(2) &&
+          now - changed > std::chrono::seconds(1)) {
         break;
       }
     }

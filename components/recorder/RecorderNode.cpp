@@ -51,7 +51,9 @@ std::vector<std::string> RecorderParams::validate() const {
 RecorderNode::RecorderNode(bus::Bus& bus, bus::NodeOptions options, const RecorderParams& params)
     : Component(bus, std::move(options)),
       params_(params),
-      recording_(params.path, bus::Recording::Access::kCreate) {
+      // A composed rig is one process, and nothing of it reads the recording while it runs.
+      recording_(params.path, bus::Recording::Access::kCreate,
+                 bus.localHub() != nullptr ? bus::Recording::Journal::kRollback : bus::Recording::Journal::kWal) {
   // A composed rig holds no socket (docs/architecture.md, "Composed mode"), and has no bus to watch.
   if (bus.localHub() == nullptr) {
     try {

@@ -214,3 +214,74 @@ TEST_CASE("flatsat run --resume refuses, with the reason, what it cannot continu
   CHECK(commanded.output.find("holds 1 operator command(s)") != std::string::npos);
   fs::remove_all(out);
 }
+
+TEST_CASE("SIGKILL of a composed run: its readers take the open transaction back, and --resume completes it",
+          "[recorder][system][crash][composed]") {
+  // A composed rig writes its recording with a rollback journal (bus/Recording.hpp,
+  // Journal::kRollback): killed in a transaction, it leaves the journal "hot", which a
+  // read-only SQLite connection cannot take back.
+  test::exportTestDomain();
+  const std::string args =
+      "--composed -q --no-plots --set duration_orbits=null --set duration_s=20000 "
+      "--set components.recorder.record_every_steps=10";
+  const std::string reference_dir = test::freshDir("crash-composed-reference");
+  const auto reference_run =
+      test::runCommand(test::kFlatsat + " run " + kDefault + " --out " + reference_dir + " " + args);
+  INFO(reference_run.output);
+  REQUIRE(reference_run.exit_code == 0);
+  const Samples reference = readSamples(reference_dir + "/recording.sqlite");
+  REQUIRE(truthCount(reference) == 200000 / 10 + 1);  // steps 0..200000 of 0.1 s, every tenth
+
+  // Killed while its journal is there: in a transaction, as nearly always.
+  const std::string out = test::freshDir("crash-composed");
+  const std::string recording = out + "/recording.sqlite";
+  const std::string journal = recording + "-journal";
+  bool hot = false;
+  for (int attempt = 0; attempt < 3 && !hot; ++attempt) {
+    fs::remove_all(out);
+    const pid_t run = test::startCommand(test::kFlatsat + " run " + kDefault + " --out " + out + " " + args,
+                                         out + ".log");
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    std::error_code error;
+    while (std::chrono::steady_clock::now() < deadline &&
+           (fs::file_size(recording, error) < 8'000'000 || error || fs::file_size(journal, error) == 0 || error)) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+    ::kill(run, SIGKILL);
+    CHECK(test::waitCommand(run) == 128 + SIGKILL);
+    hot = fs::exists(journal) && fs::file_size(journal) > 0;
+  }
+  REQUIRE(hot);
+
+  const auto info = test::runCommand(test::kFlatsat + " info " + recording);
+  INFO(info.output);
+  CHECK(info.exit_code == 0);
+  CHECK(!fs::exists(journal));  // taken back by the reader
+  const Samples crashed = readSamples(recording);  // read-only, as any other reader
+  const std::uint64_t truths = truthCount(crashed);
+  CHECK(truths > 0);
+  CHECK(truths < truthCount(reference));
+  std::uint64_t mismatched = 0;
+  std::uint64_t last_step = 0;
+  for (const auto& [key, payload] : crashed) {
+    const auto it = reference.find(key);
+    if (it == reference.end() || it->second != payload) ++mismatched;
+    last_step = std::max(last_step, std::get<2>(key));
+  }
+  CHECK(mismatched == 0);
+  // Commits end at step boundaries: every recorded step is whole.
+  std::uint64_t missing = 0;
+  for (const auto& [key, payload] : reference) {
+    if (std::get<2>(key) <= last_step && crashed.count(key) == 0) ++missing;
+  }
+  CHECK(missing == 0);
+
+  const auto resumed = test::runCommand(test::kFlatsat + " run " + kDefault + " --no-plots --resume " + out +
+                                        " --composed");
+  INFO(resumed.output);
+  REQUIRE(resumed.exit_code == 0);
+  CHECK(test::readSummary(out)["recording_sha256"] == test::readSummary(reference_dir)["recording_sha256"]);
+  fs::remove_all(out);
+  fs::remove(out + ".log");
+  fs::remove_all(reference_dir);
+}
