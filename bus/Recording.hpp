@@ -45,8 +45,9 @@ class Recording {
     /// Rollback journal: each new page goes to the file once, not to the
     /// WAL first and again at its checkpoint (about 0.3 s of a composed
     /// day's CPU, docs/performance.md), but the writer and a reader in
-    /// another process take turns. For a writer that runs alone: a composed rig. A
-    /// transaction cut short by a crash is taken back by the next reader.
+    /// another process take turns. For a writer that runs alone: a
+    /// composed rig. A transaction cut short by a crash is taken back by
+    /// the next reader that may write the file.
     kRollback,
   };
   Recording(const std::string& path, Access access, Journal journal = Journal::kWal);
