@@ -62,6 +62,14 @@ Samples readSamples(const std::string& path) {
   return samples;
 }
 
+/// The default scenario run uninterrupted into `dir` with `args`: its samples.
+Samples referenceRun(const std::string& dir, const std::string& args) {
+  const auto run = test::runCommand(test::kFlatsat + " run " + kDefault + " --out " + dir + " " + args);
+  INFO(run.output);
+  REQUIRE(run.exit_code == 0);
+  return readSamples(dir + "/recording.sqlite");
+}
+
 std::uint64_t truthCount(const Samples& samples) {
   std::uint64_t n = 0;
   for (const auto& [key, payload] : samples) n += std::get<0>(key) == "flatsat/truth";
@@ -95,11 +103,7 @@ TEST_CASE("SIGKILL of the recorder or the dynamics server leaves a readable reco
           "[recorder][system][crash]") {
   test::exportTestDomain();
   const std::string reference_dir = test::freshDir("crash-reference");
-  const auto reference_run =
-      test::runCommand(test::kFlatsat + " run " + kDefault + " -q --no-plots --out " + reference_dir + " " + kArgs);
-  INFO(reference_run.output);
-  REQUIRE(reference_run.exit_code == 0);
-  const Samples reference = readSamples(reference_dir + "/recording.sqlite");
+  const Samples reference = referenceRun(reference_dir, "-q --no-plots " + kArgs);
   const std::uint64_t reference_steps = truthCount(reference);
   REQUIRE(reference_steps == 3001);
 
@@ -225,11 +229,7 @@ TEST_CASE("SIGKILL of a composed run: its readers take the open transaction back
       "--composed -q --no-plots --set duration_orbits=null --set duration_s=20000 "
       "--set components.recorder.record_every_steps=10";
   const std::string reference_dir = test::freshDir("crash-composed-reference");
-  const auto reference_run =
-      test::runCommand(test::kFlatsat + " run " + kDefault + " --out " + reference_dir + " " + args);
-  INFO(reference_run.output);
-  REQUIRE(reference_run.exit_code == 0);
-  const Samples reference = readSamples(reference_dir + "/recording.sqlite");
+  const Samples reference = referenceRun(reference_dir, args);
   REQUIRE(truthCount(reference) == 200000 / 10 + 1);  // steps 0..200000 of 0.1 s, every tenth
 
   // Killed while its journal is there: in a transaction, as nearly always.
