@@ -23,8 +23,10 @@ namespace {
 const std::string kRunSh = std::string(FLATSAT_SOURCE_DIR) + "/deploy/compose/run.sh";
 using test::kDefault;
 // The containers' start (discovery) and these steps last long enough for
-// several health probes at 2 s.
-const std::string kLength = "--set duration_orbits=null --set duration_s=120";
+// several health probes at 2 s. With 120 s, on a loaded machine (the suite
+// at -j3), a gyro's first probe, which waits for discovery, was still
+// waiting when the run ended 3.3 s later.
+const std::string kLength = "--set duration_orbits=null --set duration_s=300";
 const std::vector<std::string> kComponents = {
     "dynamics_server", "magnetometer", "sun_sensor", "gyro", "wheel_tach",
     "estimator", "attitude_controller", "unloading_controller", "recorder"};
