@@ -53,6 +53,21 @@ const std::string kDeferIndex =
     std::string("INSERT OR REPLACE INTO meta VALUES ('") + meta::kIndexDeferred + "', '1')";
 const std::string kForgetDeferral = std::string("DELETE FROM meta WHERE key = '") + meta::kIndexDeferred + "'";
 
+/// Runs `sql` on a connection of its own that may write the file: a reader's
+/// errand (it opened the file read-only). False when this process may not
+/// write the file or `sql` failed, which is then rolled back.
+bool execWithWriteAccess(const std::string& path, const std::string& sql) {
+  sqlite3* db = nullptr;
+  bool done = false;
+  if (sqlite3_open_v2(path.c_str(), &db, SQLITE_OPEN_READWRITE | SQLITE_OPEN_NOMUTEX, nullptr) == SQLITE_OK) {
+    sqlite3_busy_timeout(db, 10'000);
+    done = sqlite3_exec(db, sql.c_str(), nullptr, nullptr, nullptr) == SQLITE_OK;
+    if (!done) sqlite3_exec(db, "ROLLBACK", nullptr, nullptr, nullptr);
+  }
+  sqlite3_close(db);
+  return done;
+}
+
 /// A rollback-journal writer killed in a transaction leaves its journal
 /// "hot": the pages it changed, to be put back before anyone reads. SQLite
 /// does that at the next read, but only on a connection that may write (a
@@ -62,12 +77,7 @@ const std::string kForgetDeferral = std::string("DELETE FROM meta WHERE key = '"
 void takeBackInterruptedTransaction(const std::string& path) {
   std::error_code error;
   if (std::filesystem::file_size(path + "-journal", error) == 0 || error) return;
-  sqlite3* db = nullptr;
-  if (sqlite3_open_v2(path.c_str(), &db, SQLITE_OPEN_READWRITE | SQLITE_OPEN_NOMUTEX, nullptr) == SQLITE_OK) {
-    sqlite3_busy_timeout(db, 10'000);
-    sqlite3_exec(db, "SELECT count(*) FROM sqlite_master", nullptr, nullptr, nullptr);
-  }
-  sqlite3_close(db);
+  execWithWriteAccess(path, "SELECT count(*) FROM sqlite_master");
 }
 
 /// SQLite counts its allocations under a global mutex unless told not to
@@ -400,17 +410,10 @@ void Recording::needIndex() const {
   if (writing_ || index_checked_) return;
   index_checked_ = true;
   if (meta(meta::kIndexDeferred).empty()) return;
-  sqlite3* db = nullptr;
-  if (sqlite3_open_v2(path_.c_str(), &db, SQLITE_OPEN_READWRITE | SQLITE_OPEN_NOMUTEX, nullptr) == SQLITE_OK) {
-    sqlite3_busy_timeout(db, 10'000);
-    // The sort in memory, not through temporary files.
-    const std::string build = std::string("PRAGMA temp_store=MEMORY; ") + kLargeCache + "; BEGIN IMMEDIATE; " +
-                              kCreateIndex + "; " + kForgetDeferral + "; COMMIT";
-    if (sqlite3_exec(db, build.c_str(), nullptr, nullptr, nullptr) != SQLITE_OK) {
-      sqlite3_exec(db, "ROLLBACK", nullptr, nullptr, nullptr);  // read-only after all: the queries scan
-    }
-  }
-  sqlite3_close(db);
+  // The sort in memory, not through temporary files. Where it cannot be
+  // built (read-only after all) the queries scan.
+  execWithWriteAccess(path_, std::string("PRAGMA temp_store=MEMORY; ") + kLargeCache + "; BEGIN IMMEDIATE; " +
+                                 kCreateIndex + "; " + kForgetDeferral + "; COMMIT");
 }
 
 void Recording::forEachStored(const std::function<void(const StoredSample&)>& visit) const {
