@@ -6,6 +6,7 @@
 #include <map>
 #include <mutex>
 #include <optional>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -209,6 +210,20 @@ class Reader : private eprosima::fastdds::dds::DataReaderListener {
     return status.current_count;
   }
   const std::string& topicName() const { return name_; }
+  /// Whether a writer of one of `participants` is matched (in process: any writer,
+  /// as every one is the rig's own code). Matched writers are counted, not named,
+  /// by Fast DDS's own status; get_matched_publications is unsupported in 2.9.
+  bool matchedFrom(const std::vector<std::string>& participants) const {
+    if (local_ != nullptr) return local_->writers() > 0;
+    std::lock_guard lock(trust_mutex_);
+    for (const auto& writer : matched_) {
+      eprosima::fastrtps::rtps::GUID_t guid;
+      eprosima::fastrtps::rtps::iHandle2GUID(guid, writer);
+      const auto name = bus_->participantName(guid.guidPrefix);
+      if (name && std::find(participants.begin(), participants.end(), *name) != participants.end()) return true;
+    }
+    return false;
+  }
 
   /// Requests a longer deadline than the QoS preset's (a producer slower than the
   /// lease); the writers' offered one stays compatible. Nothing in process.
@@ -282,6 +297,14 @@ class Reader : private eprosima::fastdds::dds::DataReaderListener {
   /// they could be taken, so on_data_available would never see it.
   void on_subscription_matched(eprosima::fastdds::dds::DataReader*,
                                const eprosima::fastdds::dds::SubscriptionMatchedStatus& status) override {
+    {
+      std::lock_guard lock(trust_mutex_);
+      if (status.current_count_change > 0) {
+        matched_.insert(status.last_publication_handle);
+      } else if (status.current_count_change < 0) {
+        matched_.erase(status.last_publication_handle);
+      }
+    }
     if (status.current_count_change <= 0 || trust_.producers.empty() || trust_.source_is_participant) return;
     std::string participant;
     {
@@ -355,8 +378,9 @@ class Reader : private eprosima::fastdds::dds::DataReaderListener {
   LivelinessCallback on_liveliness_;
   DeadlineCallback on_deadline_;
   WriterTrust trust_;
-  std::mutex trust_mutex_;
+  mutable std::mutex trust_mutex_;
   std::map<eprosima::fastdds::dds::InstanceHandle_t, WriterSeen> writer_trusted_;  // judged()
+  std::set<eprosima::fastdds::dds::InstanceHandle_t> matched_;                      // matchedFrom()
   std::mutex sources_mutex_;
   std::string last_source_;
   std::map<eprosima::fastdds::dds::InstanceHandle_t, std::string> sources_;  // writer -> header.source

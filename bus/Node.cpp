@@ -77,7 +77,7 @@ void Node::waitForProducers() {
       [this] {
         std::string missing;
         for (const auto& input : inputs_) {
-          if (input->matchedWriters() == 0) missing += " " + input->topicName();
+          if (!input->producerMatched()) missing += " " + input->topicName();
         }
         return missing;
       },

@@ -100,7 +100,8 @@ class InputBase {
   /// Holds some sample stamped at or before step k.
   virtual bool hasAny(std::uint64_t k) const = 0;
   virtual void dropBefore(std::uint64_t k) = 0;
-  virtual int matchedWriters() const = 0;
+  /// Whether the writer the rig starts for this topic is matched (Node::waitForProducers).
+  virtual bool producerMatched() const = 0;
   virtual const std::string& topicName() const = 0;
   /// Samples received again and passed on once (Health.copies_dropped).
   virtual std::uint64_t copiesDropped() const = 0;
@@ -165,7 +166,7 @@ class Input final : public InputBase {
   bool has(std::uint64_t k) const override;
   bool hasAny(std::uint64_t k) const override;
   void dropBefore(std::uint64_t k) override;
-  int matchedWriters() const override { return reader_.matchedWriters(); }
+  bool producerMatched() const override { return reader_.matchedFrom(awaited_); }
   const std::string& topicName() const override { return reader_.topicName(); }
   std::uint64_t copiesDropped() const override {
     std::lock_guard lock(mutex_);
@@ -212,6 +213,12 @@ class Input final : public InputBase {
   /// duplicate fault): what it passed on counts as consumed.
   const bool passes_through_;
   std::uint64_t hold_steps_ = 1;       ///< paced: steps a last sample is held for (the lease)
+  /// The participants one of which must be matched before the first step: the
+  /// topic's producer (or a trusted stand-in, a replay). Not a bridge alone:
+  /// readers would take its first sample as the owner's and drop the
+  /// producer's steps before it when the producer matched late (exclusive
+  /// ownership).
+  std::vector<std::string> awaited_;
   Reader<Def> reader_;
 };
 
@@ -541,6 +548,8 @@ Input<Def>::Input(Node& node, const Def& def, std::uint32_t producer_divider, Ob
   if (node.paced() && producer_period > node.bus_.tuning().lease) reader_.requestDeadline(producer_period);
   const auto lease_steps = static_cast<std::uint64_t>(node.bus_.tuning().lease / node.options_.period);
   hold_steps_ = std::max<std::uint64_t>(producer_divider, lease_steps);
+  awaited_.emplace_back(def.producer);
+  awaited_.insert(awaited_.end(), node.options_.trusted.begin(), node.options_.trusted.end());
 }
 
 template <class Def>

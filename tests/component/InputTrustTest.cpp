@@ -32,6 +32,7 @@ class GyroConsumer final : public bus::Node {
   bool waitFor(std::uint64_t k) { return waitForInputs(k); }
   void publishNow() { publishHealth(msg::ComponentState::RUNNING, 0, "test"); }
   void grantedStep(std::uint64_t k) { granted(k); }
+  void waitForPeers() { waitForProducers(); }
 
  private:
   bus::InputOf<bus::topics::kGyro>& gyro_ = addInput(bus::topics::kGyro);
@@ -169,6 +170,33 @@ TEST_CASE("a weaker intruder, whose samples exclusive ownership drops, is named 
   } catch (const bus::NodeFailure& e) {
     CHECK(std::string(e.what()).find("intruder on flatsat/gyro: participant 'rogue' (writer ") != std::string::npos);
   }
+}
+
+TEST_CASE("a node waits for the producer its rig runs, not for a bridge that matched first",
+          "[component][dds][trust][hil]") {
+  // A bridge's first sample makes it the owner (exclusive ownership): were a node
+  // to start on the bridge alone, the emulator's steps before it, arriving once
+  // the emulator matched, would be dropped (a recorder would miss them).
+  const std::uint32_t domain = test::testDomain();
+  bus::QosTuning stronger;
+  stronger.ownership_strength = bus::kBridgeStrength;
+  bus::Bus bridge_bus({.domain_id = domain, .participant_name = "gyro_bridge", .tuning = stronger});
+  bus::WriterOf<bus::topics::kGyro> bridge(bridge_bus, bus::topics::kGyro);
+  bus::NodeOptions options{"estimator", {{"dynamics_server", 1}, {"gyro", 1}, {"estimator", 1}}};
+  options.bridges = {"gyro_bridge"};
+  options.peer_timeout = std::chrono::milliseconds(3000);
+  bus::Bus consumer_bus({.domain_id = domain, .participant_name = "estimator"});
+  GyroConsumer consumer(consumer_bus, options);
+  REQUIRE(test::within(20, [&] { return bridge.matchedReaders() > 0; }));
+  try {
+    consumer.waitForPeers();
+    FAIL("ready with the bridge alone");
+  } catch (const bus::NodeFailure& e) {
+    CHECK(std::string(e.what()) == "estimator: waiting for producers to match for 3000 ms; missing: flatsat/gyro");
+  }
+  bus::Bus gyro_bus({.domain_id = domain, .participant_name = "gyro"});
+  bus::WriterOf<bus::topics::kGyro> gyro(gyro_bus, bus::topics::kGyro);
+  CHECK_NOTHROW(consumer.waitForPeers());
 }
 
 TEST_CASE("samples stamped far past the rig's step are dropped and leave memory where it was",
