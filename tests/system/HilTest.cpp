@@ -268,6 +268,7 @@ TEST_CASE("a reaction wheel unit on a serial line turns the plant's wheels, and 
   REQUIRE(test::runCommand("pkill -KILL -f 'flatsat-device_si[m] .*--name wheel_tach_device --out " + out + "'")
               .exit_code == 0);
   const auto s = run.get().summary;
+  INFO("ownership_switches: " << s["ownership_switches"].dump());  // first: a long summary is cut in CI's log
   INFO(s.dump(2));
   CHECK(s["roles"]["wheel_tach_bridge"] == "bridge");
   // The default rig's usual error on the Sun, paced, is ~0.02 deg (hil_flight_computer).
