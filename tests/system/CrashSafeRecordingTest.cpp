@@ -76,6 +76,16 @@ std::uint64_t truthCount(const Samples& samples) {
   return n;
 }
 
+/// Samples of `crashed` that the uninterrupted run did not record, or recorded otherwise.
+std::uint64_t mismatchedSamples(const Samples& crashed, const Samples& reference) {
+  std::uint64_t mismatched = 0;
+  for (const auto& [key, payload] : crashed) {
+    const auto it = reference.find(key);
+    if (it == reference.end() || it->second != payload) ++mismatched;
+  }
+  return mismatched;
+}
+
 /// The pid of `executable` started for the run into `out` (its --out argument).
 pid_t findProcess(const std::string& executable, const std::string& out) {
   for (const auto& entry : fs::directory_iterator("/proc")) {
@@ -155,12 +165,7 @@ TEST_CASE("SIGKILL of the recorder or the dynamics server leaves a readable reco
         CHECK(truthCount(crashed) == steps);
       }
       // Whatever was recorded is exactly what the uninterrupted run recorded.
-      std::uint64_t mismatched = 0;
-      for (const auto& [key, payload] : crashed) {
-        auto it = reference.find(key);
-        if (it == reference.end() || it->second != payload) ++mismatched;
-      }
-      CHECK(mismatched == 0);
+      CHECK(mismatchedSamples(crashed, reference) == 0);
 
       const auto exported = test::runCommand(test::kFlatsat + " export " + recording +
                                              " --csv -t truth -o " + out + "/export");
@@ -261,14 +266,9 @@ TEST_CASE("SIGKILL of a composed run: its readers take the open transaction back
   const std::uint64_t truths = truthCount(crashed);
   CHECK(truths > 0);
   CHECK(truths < truthCount(reference));
-  std::uint64_t mismatched = 0;
+  CHECK(mismatchedSamples(crashed, reference) == 0);
   std::uint64_t last_step = 0;
-  for (const auto& [key, payload] : crashed) {
-    const auto it = reference.find(key);
-    if (it == reference.end() || it->second != payload) ++mismatched;
-    last_step = std::max(last_step, std::get<2>(key));
-  }
-  CHECK(mismatched == 0);
+  for (const auto& [key, payload] : crashed) last_step = std::max(last_step, std::get<2>(key));
   // Commits end at step boundaries: every recorded step is whole.
   std::uint64_t missing = 0;
   for (const auto& [key, payload] : reference) {
