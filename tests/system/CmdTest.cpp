@@ -202,7 +202,7 @@ TEST_CASE("cmd sends mode, fault and parameter commands that the components ackn
     for (const auto& [component, component_acks] : acks) {
       for (const auto& ack : component_acks) {
         std::string label = (ack["command"].get<std::string>() + " " + ack["reason"].get<std::string>()).substr(0, 40);
-        for (auto q = label.find('\''); q != std::string::npos; q = label.find('\'', q + 2)) label.insert(q, "'");
+        for (auto q = label.find('\''); q != std::string::npos; q = label.find('\'', q + 2)) label.insert(q, 1, '\'');
         CAPTURE(label);
         CHECK((script.find("set label '" + label + "'") != std::string::npos) == ack["accepted"].get<bool>());
       }
