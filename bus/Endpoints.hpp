@@ -217,9 +217,7 @@ class Reader : private eprosima::fastdds::dds::DataReaderListener {
     if (local_ != nullptr) return local_->writers() > 0;
     std::lock_guard lock(trust_mutex_);
     for (const auto& writer : matched_) {
-      eprosima::fastrtps::rtps::GUID_t guid;
-      eprosima::fastrtps::rtps::iHandle2GUID(guid, writer);
-      const auto name = bus_->participantName(guid.guidPrefix);
+      const auto name = participantOf(writer);
       if (name && std::find(participants.begin(), participants.end(), *name) != participants.end()) return true;
     }
     return false;
@@ -349,14 +347,19 @@ class Reader : private eprosima::fastdds::dds::DataReaderListener {
   /// already: judged again if it comes back. With trust_mutex_ held.
   WriterSeen* judged(const eprosima::fastdds::dds::InstanceHandle_t& writer) {
     if (const auto it = writer_trusted_.find(writer); it != writer_trusted_.end()) return &it->second;
-    eprosima::fastrtps::rtps::GUID_t guid;
-    eprosima::fastrtps::rtps::iHandle2GUID(guid, writer);
-    const auto name = bus_->participantName(guid.guidPrefix);
+    const auto name = participantOf(writer);
     if (!name) return nullptr;
     const bool producer =
         std::find(trust_.producers.begin(), trust_.producers.end(), *name) != trust_.producers.end();
     return &writer_trusted_.emplace(writer, WriterSeen{trust_.source_is_participant || producer, *name, false, producer})
                 .first->second;
+  }
+
+  /// The name of `writer`'s participant; none while discovery has not announced it.
+  std::optional<std::string> participantOf(const eprosima::fastdds::dds::InstanceHandle_t& writer) const {
+    eprosima::fastrtps::rtps::GUID_t guid;
+    eprosima::fastrtps::rtps::iHandle2GUID(guid, writer);
+    return bus_->participantName(guid.guidPrefix);
   }
 
   void foreign(const eprosima::fastdds::dds::InstanceHandle_t& writer, const std::string& participant, bool first,
